@@ -1,0 +1,69 @@
+# Makefile: builds the ffcontact C library, the FreeFEM plugin and the
+# meshes; runs case studies, tests and benchmarks.
+#   make            library + plugin
+#   make demo       set-up, build, Hertz case study end to end
+#   make test       set-up, build, whole test suite
+#   make run CASE=<name> ARGS="<options>"   one case study -> results/<name>.json
+
+CC      ?= gcc
+CXX     ?= g++
+CFLAGS  ?= -O2
+CFLAGS  += -std=c11 -Wall -Wextra -Werror -fPIC -Iinclude
+FFFLAGS  = -shared -fPIC -O2 -std=c++14 -DBAMG_LONG_LONG -DNCHECKPTR -DNDEBUG \
+           -I/usr/include/freefem++ -Iinclude -Wall -Wno-unused-parameter -Wno-mismatched-new-delete
+B       := build
+
+CSRC    := $(wildcard plugin/*.c)
+COBJ    := $(patsubst plugin/%.c,$(B)/obj/%.o,$(CSRC))
+CTESTS  := $(patsubst tests/c/%.c,$(B)/tests/%,$(wildcard tests/c/test_*.c))
+HDRS    := include/ffc.h $(wildcard plugin/*.h)
+
+.PHONY: all lib plugin setup test demo run ctest clean meshes
+all: lib plugin meshes
+
+lib: $(B)/libffc.a
+plugin: $(B)/ffcontact.so
+
+$(B)/obj/%.o: plugin/%.c $(HDRS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -c $< -o $@
+
+$(B)/libffc.a: $(COBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(B)/ffcontact.so: plugin/ffcontact.cpp $(B)/libffc.a include/ffc.h
+	$(CXX) $(FFFLAGS) $< $(B)/libffc.a -lm -o $@
+
+$(B)/tests/%: tests/c/%.c tests/c/ffc_test.h $(B)/libffc.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -Itests/c $< $(B)/libffc.a -lcmocka -lm -o $@
+
+ctest: $(CTESTS)
+
+setup:
+	@sh scripts/setup.sh
+
+test: setup
+	@$(MAKE) --no-print-directory all ctest
+	@sh tests/run.sh
+
+demo: setup
+	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory run CASE=hertz ARGS="$(ARGS)"
+
+run: all
+	@test -n "$(CASE)" || { echo "usage: make run CASE=<name> ARGS=\"<options>\""; exit 2; }
+	@test -f scripts/$(CASE).edp || { echo "no case study scripts/$(CASE).edp"; exit 2; }
+	@mkdir -p results
+	sh scripts/ff scripts/$(CASE).edp $(ARGS)
+
+clean:
+	rm -rf $(B)
+
+# meshes at their default sizes (cases mesh other sizes on demand)
+MSH := $(patsubst meshes/%.geo,$(B)/meshes/%.msh,$(wildcard meshes/*.geo))
+meshes: $(MSH)
+$(B)/meshes/%.msh: meshes/%.geo
+	@mkdir -p $(dir $@)
+	gmsh -3 -format msh2 -v 1 $< -o $@ >/dev/null

@@ -1,0 +1,175 @@
+/* ffc.h: public C interface of the ffcontact kernels (3D contact geometry,
+ * contact search and contact links for FreeFEM), free of FreeFEM types. */
+#ifndef FFC_H
+#define FFC_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------- status */
+/* Negative = error, 0 = success, positive = information. */
+enum {
+    FFC_OK = 0,
+    FFC_INFO_EDGE = 1,            /* projection foot clamped onto a facet edge */
+    FFC_INFO_VERTEX = 2,          /* projection foot clamped onto a facet vertex */
+    FFC_ERR_NULL = -1,            /* a required pointer is NULL */
+    FFC_ERR_SIZE = -2,            /* an array size or count is out of range */
+    FFC_ERR_NONFINITE = -3,       /* NaN or Inf in an input */
+    FFC_ERR_DEGENERATE = -4,      /* zero-area facet (|tau1 x tau2| ~ 0) */
+    FFC_ERR_NODES = -5,           /* nodes per facet is neither 3 nor 6 */
+    FFC_ERR_QUAD = -6,            /* no quadrature rule of that degree */
+    FFC_ERR_NOCONV = -7,          /* an iteration did not converge */
+    FFC_ERR_CAPACITY = -8,        /* caller buffer too small (needed size returned separately) */
+    FFC_ERR_EMPTY = -9,           /* an empty surface or set */
+    FFC_ERR_INDEX = -10,          /* a node index out of range */
+    FFC_ERR_LABEL = -11,          /* a label that no boundary face carries */
+    FFC_ERR_VALUE = -12,          /* a parameter outside its admissible range */
+    FFC_ERR_MEMORY = -13          /* allocation failed */
+};
+
+/* Human-readable text of a status code (static string, never NULL). */
+const char *ffc_strerror(int status);
+
+/* ------------------------------------------------------------- effects */
+/* What a scene computes: kernels skip every term whose effect is off. */
+typedef struct {
+    int friction;      /* 1: Coulomb friction terms, 0: frictionless (none computed) */
+    int dynamic;       /* 1: velocity form with time step, 0: quasi-static */
+    int finite_def;    /* 1: geometry of the current configuration x = X + u in
+                          area elements and tangents, 0: small strain */
+} ffc_effects;
+
+/* ---------------------------------------------------- facet shape functions */
+/* Triangle facets in local coordinates (xi1, xi2), area coordinates
+ * L1 = 1 - xi1 - xi2, L2 = xi1, L3 = xi2.  Node order: 3 vertices at
+ * (0,0), (1,0), (0,1); for 6 nodes then the mid-edge nodes of edges
+ * 0-1, 1-2, 2-0. */
+#define FFC_MAXNODES 6                  /* nodes of the largest facet */
+#define FFC_MAXDOF (3 * 2 * FFC_MAXNODES) /* slave + master facet dofs of one link (36) */
+
+/* N[nn] shape values, dN[nn][2] first derivatives d N_a / d xi_b.
+ * Returns FFC_OK or FFC_ERR_NODES. */
+int ffc_shape(int nn, const double xi[2], double N[FFC_MAXNODES],
+              double dN[FFC_MAXNODES][2]);
+
+/* d2N[nn][3] second derivatives (d11, d12, d22); zero for 3 nodes. */
+int ffc_shape_d2(int nn, const double xi[2], double d2N[FFC_MAXNODES][3]);
+
+/* Geometry of a facet at one point, in the configuration whose nodal
+ * positions are given. */
+typedef struct {
+    double x[3];        /* position (length) */
+    double tau[2][3];   /* covariant tangents dx/dxi_a (length) */
+    double n[3];        /* unit normal tau1 x tau2 / |tau1 x tau2| (1) */
+    double m[2][2];     /* surface metric m_ab = tau_a . tau_b (length^2) */
+    double minv[2][2];  /* inverse metric m^ab (1/length^2) */
+    double j;           /* area element |tau1 x tau2| (length^2 per unit xi-area) */
+} ffc_point;
+
+/* Position, tangents, normal, metric and area element at xi of the facet
+ * with nodal positions X[nn][3].  FFC_ERR_DEGENERATE if j is not positive
+ * relative to the square of the facet size. */
+int ffc_facet_point(int nn, const double X[][3], const double xi[2],
+                    ffc_point *p);
+
+/* ------------------------------------------------------------ quadrature */
+/* Gauss rules on the reference triangle (area 1/2), exact for polynomials
+ * of total degree <= degree, degree 1..6: 1, 3, 6, 6, 7, 12 points.
+ * Returns the number of points needed for degree (or FFC_ERR_QUAD). */
+int ffc_quad_size(int degree);
+
+/* Fills xi[npts][2] and w[npts] (weights summing to 1/2). cap is the
+ * capacity of both arrays in points.  Returns the number of points,
+ * FFC_ERR_QUAD, or FFC_ERR_CAPACITY if cap < ffc_quad_size(degree). */
+int ffc_quad(int degree, int cap, double xi[][2], double w[]);
+
+/* ------------------------------------------------------------ projection */
+/* Where the foot of a projection lies on the facet. */
+enum {
+    FFC_FOOT_INSIDE = 0,   /* interior (or on the boundary within round-off) */
+    FFC_FOOT_EDGE0 = 1,    /* clamped onto edge 0-1 (xi2 = 0) */
+    FFC_FOOT_EDGE1 = 2,    /* clamped onto edge 1-2 (xi1 + xi2 = 1) */
+    FFC_FOOT_EDGE2 = 3,    /* clamped onto edge 2-0 (xi1 = 0) */
+    FFC_FOOT_VERTEX0 = 4,  /* clamped onto vertex 0 */
+    FFC_FOOT_VERTEX1 = 5,
+    FFC_FOOT_VERTEX2 = 6
+};
+
+/* Closest-point projection of a point p onto a facet. */
+typedef struct {
+    double xi[2];       /* local coordinates of the foot, inside the facet (1) */
+    double xi_free[2];  /* stationary point of |p - x(xi)| without the facet
+                           bounds; equals xi when where == FFC_FOOT_INSIDE (1) */
+    double x[3];        /* foot position x(xi) (length) */
+    double n[3];        /* unit facet normal at the foot (1) */
+    double gap;         /* signed normal gap n . (p - x): > 0 on the side the
+                           normal points to, < 0 below (length) */
+    double dist;        /* |p - x| (length) */
+    int where;          /* FFC_FOOT_* */
+    int iters;          /* Newton iterations used (0 for flat facets) */
+} ffc_proj;
+
+/* Projects p onto the facet X[nn][3].  Returns FFC_OK when the foot is
+ * inside, FFC_INFO_EDGE or FFC_INFO_VERTEX when it was clamped onto the
+ * boundary (out->where says which), or a negative error. */
+int ffc_project(int nn, const double X[][3], const double p[3], ffc_proj *out);
+
+/* Derivatives of an interior projection with respect to the nodal
+ * positions (equivalently displacements) of a slave facet and the master
+ * facet.  The slave point is p = sum_a Ns[a] x_a (ns slave nodes with
+ * fixed shape values Ns); the master facet is Xm[nm][3] and pr its
+ * projection.  Unknowns are ordered [slave node 0 (x,y,z), ..., slave node
+ * ns-1, master node 0, ..., master node nm-1]; nd = 3 (ns + nm).
+ * Outputs (rows of stride FFC_MAXDOF, first nd entries used):
+ *   dxi[2][.]  d xi_a / d u,   dg[.]  d gap / d u,   dn[3][.]  d n_i / d u.
+ * Valid for pr->where == FFC_FOOT_INSIDE; FFC_ERR_VALUE otherwise. */
+int ffc_project_deriv(int ns, const double Ns[], int nm, const double Xm[][3],
+                      const ffc_proj *pr, double dxi[2][FFC_MAXDOF],
+                      double dg[FFC_MAXDOF], double dn[3][FFC_MAXDOF]);
+
+/* ------------------------------------------------------------- surfaces */
+/* A labelled surface: the boundary faces of a volume mesh that carry one of
+ * a set of labels.  Node indices refer to the volume mesh numbering. */
+
+/* Selects the boundary faces whose label is in labs[nlab].
+ *   nbe faces, be[nbe*nn] node indices, belab[nbe] labels, beopp[nbe] the
+ *   node of the adjacent tetrahedron opposite the face (for orientation),
+ *   X[nv*3] node positions.
+ * Writes the selected faces, oriented so that the normal points out of
+ * the body, into F[cap*nn] and returns their count.
+ * Errors: FFC_ERR_LABEL (*bad = the missing label), FFC_ERR_EMPTY,
+ * FFC_ERR_INDEX / FFC_ERR_NONFINITE / FFC_ERR_DEGENERATE (*bad = face
+ * index), FFC_ERR_CAPACITY (*bad = needed count). */
+int ffc_surface_select(int nn, long nbe, const long be[], const long belab[],
+                       const long beopp[], long nv, const double X[],
+                       int nlab, const long labs[], long cap, long F[],
+                       long *bad);
+
+/* Distinct labels among belab[nbe], ascending, into out[cap]; returns the
+ * number of distinct labels (may exceed cap: only cap are written). */
+long ffc_labels_present(long nbe, const long belab[], long cap, long out[]);
+
+/* Checks a surface F[nf*nn] against nv nodes at positions X[nv*3] + u[nv*3]
+ * (u may be NULL): indices in range, finite positions, non-degenerate
+ * facets.  On error *bad is the facet index (or node index for
+ * FFC_ERR_NONFINITE). */
+int ffc_surface_check(int nn, long nf, const long F[], long nv,
+                      const double X[], const double u[], long *bad);
+
+/* Area of the surface F[nf*nn] at positions X + u (u may be NULL),
+ * integrated with the Gauss rule of the given degree. */
+int ffc_surface_area(int nn, long nf, const long F[], long nv,
+                     const double X[], const double u[], int degree,
+                     double *area);
+
+/* Unit normals N[nf*3] at the centroid of each facet of F[nf*nn], at
+ * positions X + u (u may be NULL).  Errors as ffc_surface_check. */
+int ffc_surface_normals(int nn, long nf, const long F[], long nv,
+                        const double X[], const double u[], double N[],
+                        long *bad);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* FFC_H */

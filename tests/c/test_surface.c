@@ -1,0 +1,138 @@
+/* test_surface.c: selection by label, outward orientation, validation and
+ * area of boundary surfaces given as plain arrays. */
+#include "ffc_test.h"
+
+/* one tetrahedron, faces given with mixed orientation, labels 1..4 */
+static const double TX[4 * 3] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+static const long TBE[4 * 3] = {1, 2, 3, 0, 2, 3, 0, 3, 1, 0, 1, 2};
+static const long TOPP[4] = {0, 1, 2, 3};
+static const long TLAB[4] = {1, 2, 2, 4};
+
+static void test_select_orients_outward(void **state)
+{
+    (void)state;
+    const long labs[3] = {1, 2, 4};
+    long F[12], bad;
+    int nf = ffc_surface_select(3, 4, TBE, TLAB, TOPP, 4, TX, 3, labs, 4, F, &bad);
+    assert_int_equal(nf, 4);
+    /* closed surface: sum of n dA vanishes; (1/3) int x.n dA = volume 1/6 */
+    double vec[3] = {0, 0, 0}, vol = 0;
+    for (int f = 0; f < nf; f++) {
+        double P[3][3];
+        for (int a = 0; a < 3; a++)
+            for (int i = 0; i < 3; i++) P[a][i] = TX[3 * F[3 * f + a] + i];
+        ffc_point g;
+        const double c[2] = {1.0 / 3, 1.0 / 3};
+        assert_int_equal(ffc_facet_point(3, (const double(*)[3])P, c, &g), FFC_OK);
+        for (int i = 0; i < 3; i++) vec[i] += 0.5 * g.j * g.n[i];
+        vol += 0.5 * g.j * (g.x[0] * g.n[0] + g.x[1] * g.n[1] + g.x[2] * g.n[2]) / 3.0;
+    }
+    for (int i = 0; i < 3; i++) assert_close(vec[i], 0.0, 1e-15);
+    assert_close(vol, 1.0 / 6.0, 1e-15);
+}
+
+static void test_select_by_label(void **state)
+{
+    (void)state;
+    const long two[1] = {2};
+    long F[12], bad;
+    assert_int_equal(ffc_surface_select(3, 4, TBE, TLAB, TOPP, 4, TX, 1, two, 4, F, &bad), 2);
+    /* a missing label is reported with its value */
+    const long miss[2] = {2, 7};
+    assert_int_equal(ffc_surface_select(3, 4, TBE, TLAB, TOPP, 4, TX, 2, miss, 4, F, &bad), FFC_ERR_LABEL);
+    assert_int_equal(bad, 7);
+    /* too small a buffer reports the size needed */
+    const long all[3] = {1, 2, 4};
+    assert_int_equal(ffc_surface_select(3, 4, TBE, TLAB, TOPP, 4, TX, 3, all, 2, F, &bad), FFC_ERR_CAPACITY);
+    assert_int_equal(bad, 4);
+    assert_int_equal(ffc_surface_select(3, 4, TBE, TLAB, TOPP, 4, TX, 0, all, 4, F, &bad), FFC_ERR_EMPTY);
+    long out[4];
+    assert_int_equal(ffc_labels_present(4, TLAB, 4, out), 3);
+    assert_int_equal(out[0], 1);
+    assert_int_equal(out[1], 2);
+    assert_int_equal(out[2], 4);
+}
+
+static void test_check_errors(void **state)
+{
+    (void)state;
+    long bad;
+    const long F[6] = {1, 2, 3, 0, 2, 1};
+    assert_int_equal(ffc_surface_check(3, 2, F, 4, TX, NULL, &bad), FFC_OK);
+    double u[12] = {0};
+    u[3 * 2 + 1] = NAN;
+    assert_int_equal(ffc_surface_check(3, 2, F, 4, TX, u, &bad), FFC_ERR_NONFINITE);
+    assert_int_equal(bad, 2);
+    /* move vertex 3 onto vertex 2: facet 0 collapses */
+    double v[12] = {0};
+    v[9] = 0; v[10] = 1; v[11] = -1;
+    assert_int_equal(ffc_surface_check(3, 2, F, 4, TX, v, &bad), FFC_ERR_DEGENERATE);
+    assert_int_equal(bad, 0);
+    const long G[3] = {0, 1, 9};
+    assert_int_equal(ffc_surface_check(3, 1, G, 4, TX, NULL, &bad), FFC_ERR_INDEX);
+    assert_int_equal(bad, 0);
+    assert_int_equal(ffc_surface_check(3, 0, G, 4, TX, NULL, &bad), FFC_ERR_EMPTY);
+    assert_int_equal(ffc_surface_check(5, 1, G, 4, TX, NULL, &bad), FFC_ERR_NODES);
+}
+
+/* area of the tetrahedron's faces: 3 * 1/2 + sqrt(3)/2; and of a curved
+ * 6-node facet on a sphere against a fine flat triangulation of it */
+static void test_area(void **state)
+{
+    (void)state;
+    const long F[12] = {1, 2, 3, 0, 2, 3, 0, 3, 1, 0, 1, 2};
+    double A;
+    assert_int_equal(ffc_surface_area(3, 4, F, 4, TX, NULL, 1, &A), FFC_OK);
+    assert_close(A, 1.5 + sqrt(3.0) / 2.0, 1e-14);
+    /* a displacement that doubles every coordinate multiplies areas by 4 */
+    double u[12];
+    for (int i = 0; i < 12; i++) u[i] = TX[i];
+    assert_int_equal(ffc_surface_area(3, 4, F, 4, TX, u, 1, &A), FFC_OK);
+    assert_close(A, 4 * (1.5 + sqrt(3.0) / 2.0), 1e-13);
+    assert_int_equal(ffc_surface_area(3, 4, F, 4, TX, NULL, 9, &A), FFC_ERR_QUAD);
+
+    /* the quadratic facet's area from the degree-6 rule against a
+     * 200 x 200 subdivision into flat triangles (second-order accurate:
+     * relative error ~1e-5 for this smooth patch) */
+    double S[6][3];
+    test_sphere_facet(1.0, 0.8, S);
+    double X[18];
+    const long Q[6] = {0, 1, 2, 3, 4, 5};
+    for (int a = 0; a < 6; a++)
+        for (int i = 0; i < 3; i++) X[3 * a + i] = S[a][i];
+    assert_int_equal(ffc_surface_area(6, 1, Q, 6, X, NULL, 6, &A), FFC_OK);
+    const int M = 200;
+    double ref = 0;
+    for (int i = 0; i < M; i++)
+        for (int j = 0; i + j < M; j++)
+            for (int up = 0; up < 2; up++) {
+                if (up && i + j + 1 >= M) continue;
+                double c[3][2] = {{i, j}, {i + 1, j}, {i, j + 1}};
+                if (up) { c[0][0] = i + 1; c[0][1] = j + 1; }
+                double P[3][3];
+                for (int k = 0; k < 3; k++) {
+                    ffc_point g;
+                    double xi[2] = {c[k][0] / M, c[k][1] / M};
+                    ffc_facet_point(6, (const double(*)[3])S, xi, &g);
+                    for (int d = 0; d < 3; d++) P[k][d] = g.x[d];
+                }
+                double e1[3], e2[3], n[3];
+                for (int d = 0; d < 3; d++) { e1[d] = P[1][d] - P[0][d]; e2[d] = P[2][d] - P[0][d]; }
+                n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+                n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+                n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+                ref += 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            }
+    assert_close(A, ref, 1e-4 * ref);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_select_orients_outward),
+        cmocka_unit_test(test_select_by_label),
+        cmocka_unit_test(test_check_errors),
+        cmocka_unit_test(test_area),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

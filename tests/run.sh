@@ -1,0 +1,51 @@
+#!/bin/sh
+# run.sh: the test driver.  Runs the C unit tests (cmocka) and the FreeFEM
+# tests, prints what failed, and ends with one line "N passed, N failed".
+#   tests/edp/test_*.edp   must exit 0
+#   tests/edp/err_*.edp    must exit non-zero and print the text given on
+#                          their first line after "// expect: "
+# Optional argument: a pattern that test names must contain.
+cd "$(dirname "$0")/.." || exit 2
+pat=${1:-}
+pass=0; fail=0
+log=$(mktemp)
+report() { echo "FAIL: $1"; sed 's/^/    /' "$log" | tail -40; }
+
+for t in build/tests/test_*; do
+    [ -x "$t" ] || continue
+    case "$t" in *"$pat"*) ;; *) continue ;; esac
+    "$t" >"$log" 2>&1
+    rc=$?
+    p=$(sed -n 's/.*\[  PASSED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)
+    f=$(sed -n 's/.*\[  FAILED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)
+    p=${p:-0}; f=${f:-0}
+    if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then f=1; fi   # crashed
+    pass=$((pass + p)); fail=$((fail + f))
+    [ "$f" -gt 0 ] && report "$t"
+done
+
+for t in tests/edp/test_*.edp tests/hard/*.edp; do
+    [ -f "$t" ] || continue
+    case "$t" in *"$pat"*) ;; *) continue ;; esac
+    if sh scripts/ff "$t" >"$log" 2>&1; then
+        pass=$((pass + 1))
+    else
+        fail=$((fail + 1)); report "$t (exit $?)"
+    fi
+done
+
+for t in tests/edp/err_*.edp; do
+    [ -f "$t" ] || continue
+    case "$t" in *"$pat"*) ;; *) continue ;; esac
+    want=$(sed -n '1s|^// expect: ||p' "$t")
+    sh scripts/ff "$t" >"$log" 2>&1
+    rc=$?
+    if [ -n "$want" ] && [ "$rc" -ne 0 ] && [ "$rc" -lt 128 ] && grep -qF -- "$want" "$log"; then
+        pass=$((pass + 1))
+    else
+        fail=$((fail + 1)); report "$t (exit $rc, expected a clean error with: $want)"
+    fi
+done
+rm -f "$log"
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
