@@ -67,3 +67,12 @@ meshes: $(MSH)
 $(B)/meshes/%.msh: meshes/%.geo
 	@mkdir -p $(dir $@)
 	gmsh -3 -format msh2 -v 1 $< -o $@ >/dev/null
+
+# benchmarks
+$(B)/bench_search: tests/bench/bench_search.c $(B)/libffc.a
+	$(CC) $(CFLAGS) $< $(B)/libffc.a -lm -o $@
+
+.PHONY: bench bench-search
+bench-search: $(B)/bench_search
+	@sh tests/bench/bench_search.sh
+bench: bench-search

@@ -93,6 +93,16 @@ static double edge_min(int nn, const double X[][3], const double p[3], int e,
 {
     static const double V[3][2] = {{0, 0}, {1, 0}, {0, 1}};
     const double *A = V[e], *B = V[(e + 1) % 3];
+    if (nn == 3) { /* straight edge: closed form */
+        const double *a = X[e], *b = X[(e + 1) % 3];
+        double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        double ap[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+        double l2 = ffc__dot(ab, ab), s = l2 > 0.0 ? ffc__dot(ap, ab) / l2 : 0.0;
+        s = fmin(fmax(s, 0.0), 1.0);
+        double q[3] = {a[0] + s * ab[0], a[1] + s * ab[1], a[2] + s * ab[2]};
+        *s_out = s;
+        return dist2(p, q);
+    }
     double best_s = 0.0, best = INFINITY;
     double x[3], t[2][3], xx[3][3];
     /* coarse scan for the start, then 1D Newton with clamping */

@@ -100,33 +100,35 @@ const double *need_disp(const char *fn, KN<double> *u, long nv)
     return &(*u)[0];
 }
 
-// Facet array F: 3 vertex indices per facet.
-long need_facets(const char *fn, KN<long> *F, long nv)
+// Facet array (argument `arg`): 3 vertex indices per facet.
+long need_facets(const char *fn, const char *arg, KN<long> *F, long nv)
 {
-    if (!F) fail(fn, "argument 'F': array is not defined");
-    if (F->N() == 0) fail(fn, "argument 'F': empty surface (0 facets)");
+    const std::string a = std::string("argument '") + arg + "': ";
+    if (!F) fail(fn, a + "array is not defined");
+    if (F->N() == 0) fail(fn, a + "empty surface (0 facets)");
     if (F->N() % 3) {
         std::ostringstream s;
-        s << "argument 'F': size " << F->N() << " is not a multiple of 3";
+        s << a << "size " << F->N() << " is not a multiple of 3";
         fail(fn, s.str());
     }
     for (long i = 0; i < F->N(); i++)
         if ((*F)[i] < 0 || (*F)[i] >= nv) {
             std::ostringstream s;
-            s << "argument 'F': F[" << i << "] = " << (*F)[i]
+            s << a << arg << "[" << i << "] = " << (*F)[i]
               << " is not a vertex index of the mesh (0.." << nv - 1 << ")";
             fail(fn, s.str());
         }
     return F->N() / 3;
 }
 
-void check_surface(const char *fn, long nf, const long *F, const MeshArrays &m,
-                   const double *u)
+void check_surface(const char *fn, const char *arg, long nf, const long *F,
+                   const MeshArrays &m, const double *u)
 {
     long bad = -1;
     int st = ffc_surface_check(3, nf, F, m.nv, m.X.data(), u, &bad);
     if (st == FFC_OK) return;
     std::ostringstream s;
+    s << "argument '" << arg << "': ";
     if (st == FFC_ERR_NONFINITE)
         s << "vertex " << bad << " has a non-finite position";
     else if (st == FFC_ERR_DEGENERATE)
@@ -178,10 +180,10 @@ double ffcArea(pmesh3 const &pTh, KN<long> *const &F, KN<double> *const &u)
     const Mesh3 &Th = need_mesh(fn, pTh);
     MeshArrays m;
     mesh_arrays(Th, m);
-    long nf = need_facets(fn, F, m.nv);
+    long nf = need_facets(fn, "F", F, m.nv);
     const double *pu = need_disp(fn, u, m.nv);
     const long *pF = &(*F)[0];
-    check_surface(fn, nf, pF, m, pu);
+    check_surface(fn, "F", nf, pF, m, pu);
     double A = 0.0;
     int st = ffc_surface_area(3, nf, pF, m.nv, m.X.data(), pu, 2, &A);
     if (st) fail(fn, ffc_strerror(st));
@@ -198,10 +200,10 @@ long ffcNormals(pmesh3 const &pTh, KN<long> *const &F, KN<double> *const &u,
     if (!N) fail(fn, "argument 'N': array is not defined");
     MeshArrays m;
     mesh_arrays(Th, m);
-    long nf = need_facets(fn, F, m.nv);
+    long nf = need_facets(fn, "F", F, m.nv);
     const double *pu = need_disp(fn, u, m.nv);
     const long *pF = &(*F)[0];
-    check_surface(fn, nf, pF, m, pu);
+    check_surface(fn, "F", nf, pF, m, pu);
     std::vector<double> out(3 * nf);
     long bad = -1;
     int st = ffc_surface_normals(3, nf, pF, m.nv, m.X.data(), pu, out.data(), &bad);
@@ -209,6 +211,66 @@ long ffcNormals(pmesh3 const &pTh, KN<long> *const &F, KN<double> *const &u,
     N->resize(3 * nf);
     for (long i = 0; i < 3 * nf; i++) (*N)[i] = out[i];
     return nf;
+}
+
+// current positions x = X + u of all vertices
+std::vector<double> current_positions(const MeshArrays &m, const double *u)
+{
+    std::vector<double> x(m.X);
+    for (size_t i = 0; i < x.size(); i++) x[i] += u[i];
+    return x;
+}
+
+// Columns of a link row (real[int,int] L(nlinks, FFC_LINK_COLS)).
+const long L_SF = 0, L_Q = 1, L_XS1 = 2, L_XS2 = 3, L_MF = 4, L_XM1 = 5, L_XM2 = 6, L_GAP = 7,
+           L_NX = 8, L_NY = 9, L_NZ = 10, L_WHERE = 11, L_COLS = 12;
+
+// ffcSearch(Th, u, Fs, Fm, qdeg, crel, cabs, L): links of every quadrature
+// point of the slave facets Fs to the master facets Fm in the configuration
+// X + u; one row of L per slave point (facet-major); returns the number of
+// points with a partner.
+long ffcSearch(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &Fs,
+               KN<long> *const &Fm, long const &qdeg, double const &crel,
+               double const &cabs, KNM<double> *const &L)
+{
+    const char *fn = "ffcSearch";
+    const Mesh3 &Th = need_mesh(fn, pTh);
+    if (!L) fail(fn, "argument 'L': array is not defined");
+    if (qdeg < 1 || qdeg > 6) {
+        std::ostringstream s;
+        s << "argument 'qdeg': " << qdeg << " is not a quadrature degree (1..6)";
+        fail(fn, s.str());
+    }
+    if (!(crel >= 0) || std::isinf(crel)) fail(fn, "argument 'crel': capture distance factor " + num(crel) + " must be finite and >= 0");
+    if (!(cabs >= 0) || std::isinf(cabs)) fail(fn, "argument 'cabs': capture distance " + num(cabs) + " must be finite and >= 0");
+    MeshArrays m;
+    mesh_arrays(Th, m);
+    const double *pu = need_disp(fn, u, m.nv);
+    long nfs = need_facets(fn, "Fs", Fs, m.nv);
+    long nfm = need_facets(fn, "Fm", Fm, m.nv);
+    check_surface(fn, "Fs", nfs, &(*Fs)[0], m, pu);
+    check_surface(fn, "Fm", nfm, &(*Fm)[0], m, pu);
+    std::vector<double> x = current_positions(m, pu);
+    ffc_tree *t = nullptr;
+    int st = ffc_tree_build(3, nfm, &(*Fm)[0], m.nv, x.data(), &t);
+    if (st) fail(fn, std::string("master surface: ") + ffc_strerror(st));
+    const long nq = ffc_quad_size((int)qdeg), nl = nfs * nq;
+    std::vector<ffc_link> links(nl);
+    ffc_search_opts o = ffc_search_defaults();
+    o.capture_rel = crel;
+    o.capture_abs = cabs;
+    st = ffc_search(t, 3, nfs, &(*Fs)[0], m.nv, x.data(), (int)qdeg, &o, nl, links.data());
+    ffc_tree_free(t);
+    if (st < 0) fail(fn, ffc_strerror(st));
+    L->resize(nl, L_COLS);
+    KNM<double> &A = *L;
+    for (long k = 0; k < nl; k++) {
+        const ffc_link &l = links[k];
+        A(k, L_SF) = l.sf; A(k, L_Q) = l.q; A(k, L_XS1) = l.xs[0]; A(k, L_XS2) = l.xs[1];
+        A(k, L_MF) = l.mf; A(k, L_XM1) = l.xm[0]; A(k, L_XM2) = l.xm[1]; A(k, L_GAP) = l.gap;
+        A(k, L_NX) = l.n[0]; A(k, L_NY) = l.n[1]; A(k, L_NZ) = l.n[2]; A(k, L_WHERE) = l.where;
+    }
+    return st;
 }
 
 } // namespace
@@ -219,6 +281,9 @@ static void init()
                new OneOperator3_<long, pmesh3, KN<long> *, KN<long> *>(ffcSurface));
     Global.Add("ffcArea", "(",
                new OneOperator3_<double, pmesh3, KN<long> *, KN<double> *>(ffcArea));
+    Global.Add("ffcSearch", "(",
+               new OneOperator8_<long, pmesh3, KN<double> *, KN<long> *, KN<long> *, long, double,
+                                 double, KNM<double> *>(ffcSearch));
     Global.Add("ffcNormals", "(",
                new OneOperator4_<long, pmesh3, KN<long> *, KN<double> *, KN<double> *>(ffcNormals));
 }

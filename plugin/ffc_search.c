@@ -1,0 +1,559 @@
+/* ffc_search.c: contact search: a bounding-volume tree over the master
+ * facets (Morton order, implicit binary heap), exact closest-facet queries
+ * by branch and bound, edge adjacency, and slave-point links. */
+#include "ffc.h"
+#include "ffc_internal.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define LEAF 2          /* facets per leaf (2 measured fastest of 2, 4, 8) */
+#define STACK 256       /* traversal stack (depth <= 64 levels, 2 per level) */
+
+struct ffc_tree {
+    int nn;            /* nodes per facet: 3 or 6 */
+    long nf;           /* facets */
+    long nv;           /* node positions expected by refit */
+    long P;            /* leaves rounded up to a power of two */
+    long *F;           /* [nf*nn] connectivity (original facet order) */
+    long *slot2f;      /* [nf] tree slot -> facet */
+    long *f2slot;      /* [nf] facet -> tree slot */
+    double *hf;        /* [nf] longest edge of each facet, by facet (length) */
+    double *fx;        /* [nf*nn*3] facet node positions, tree order (length) */
+    double *box;       /* [2P*6] node boxes lo[3], hi[3] (length) */
+    long *nbr;         /* [nf*3] facet across edge e (vertices e, e+1), -1 on the rim */
+    unsigned char *vrim; /* [nf*3] 1 when vertex a lies on the rim of the surface */
+    double hmax;       /* longest facet edge (length) */
+};
+
+/* ------------------------------------------------------------ helpers */
+static double facet_h(int nn, const double *X)
+{
+    (void)nn;
+    return sqrt(ffc__facet_size2((const double(*)[3])X));
+}
+
+static void facet_box(int nn, const double *X, double b[6])
+{
+    for (int i = 0; i < 3; i++) { b[i] = INFINITY; b[3 + i] = -INFINITY; }
+    for (int a = 0; a < nn; a++)
+        for (int i = 0; i < 3; i++) {
+            double v = X[3 * a + i];
+            if (v < b[i]) b[i] = v;
+            if (v > b[3 + i]) b[3 + i] = v;
+        }
+    if (nn == 6) {
+        /* the quadratic patch lies in the convex hull of its Bezier control
+         * points: the vertices and, per edge (a, b) with mid-node m,
+         * 2 m - (a + b) / 2 */
+        static const int ed[3][3] = {{0, 1, 3}, {1, 2, 4}, {2, 0, 5}};
+        for (int e = 0; e < 3; e++)
+            for (int i = 0; i < 3; i++) {
+                double v = 2.0 * X[3 * ed[e][2] + i] - 0.5 * (X[3 * ed[e][0] + i] + X[3 * ed[e][1] + i]);
+                if (v < b[i]) b[i] = v;
+                if (v > b[3 + i]) b[3 + i] = v;
+            }
+    }
+}
+
+static double box_d2(const double b[6], const double p[3])
+{
+    double d2 = 0.0;
+    for (int i = 0; i < 3; i++) {
+        double d = p[i] < b[i] ? b[i] - p[i] : (p[i] > b[3 + i] ? p[i] - b[3 + i] : 0.0);
+        d2 += d * d;
+    }
+    return d2;
+}
+
+static uint64_t spread3(uint64_t v)
+{
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffULL;
+    v = (v | v << 16) & 0x1f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+}
+
+/* LSD radix sort of (key, idx) pairs on 8-bit digits */
+static int radix_sort(long n, uint64_t *key, long *idx)
+{
+    uint64_t *k2 = malloc((size_t)n * sizeof *k2);
+    long *i2 = malloc((size_t)n * sizeof *i2);
+    if (!k2 || !i2) { free(k2); free(i2); return FFC_ERR_MEMORY; }
+    for (int pass = 0; pass < 8; pass++) {
+        const int sh = 8 * pass;
+        long cnt[257] = {0};
+        for (long i = 0; i < n; i++) cnt[((key[i] >> sh) & 255) + 1]++;
+        if (cnt[1] == n) continue; /* every key has this digit 0 */
+        for (int d = 0; d < 256; d++) cnt[d + 1] += cnt[d];
+        for (long i = 0; i < n; i++) {
+            long o = cnt[(key[i] >> sh) & 255]++;
+            k2[o] = key[i];
+            i2[o] = idx[i];
+        }
+        memcpy(key, k2, (size_t)n * sizeof *key);
+        memcpy(idx, i2, (size_t)n * sizeof *idx);
+    }
+    free(k2);
+    free(i2);
+    return FFC_OK;
+}
+
+/* Facet coordinates into tree order and all boxes from the leaves up. */
+static int fill_geometry(ffc_tree *t, const double x[])
+{
+    const int nn = t->nn;
+    t->hmax = 0.0;
+    for (long s = 0; s < t->nf; s++) {
+        const long f = t->slot2f[s];
+        double *X = t->fx + s * nn * 3;
+        for (int a = 0; a < nn; a++)
+            for (int i = 0; i < 3; i++) {
+                double v = x[3 * t->F[f * nn + a] + i];
+                if (!isfinite(v)) return FFC_ERR_NONFINITE;
+                X[3 * a + i] = v;
+            }
+        double h = facet_h(nn, X);
+        t->hf[f] = h;
+        if (h > t->hmax) t->hmax = h;
+    }
+    const long P = t->P;
+    for (long j = 0; j < P; j++) {
+        double *b = t->box + 6 * (P + j);
+        for (int i = 0; i < 3; i++) { b[i] = INFINITY; b[3 + i] = -INFINITY; }
+        for (long s = j * LEAF; s < (j + 1) * LEAF && s < t->nf; s++) {
+            double fb[6];
+            facet_box(nn, t->fx + s * nn * 3, fb);
+            for (int i = 0; i < 3; i++) {
+                b[i] = fmin(b[i], fb[i]);
+                b[3 + i] = fmax(b[3 + i], fb[3 + i]);
+            }
+        }
+    }
+    for (long i = P - 1; i >= 1; i--) {
+        double *b = t->box + 6 * i, *l = t->box + 12 * i, *r = l + 6;
+        for (int k = 0; k < 3; k++) {
+            b[k] = fmin(l[k], r[k]);
+            b[3 + k] = fmax(l[3 + k], r[3 + k]);
+        }
+    }
+    return FFC_OK;
+}
+
+/* Edge neighbours through the node -> facet incidence (linear time). */
+static int build_adjacency(ffc_tree *t)
+{
+    const int nn = t->nn;
+    const long nf = t->nf, nv = t->nv;
+    long *start = calloc((size_t)nv + 1, sizeof *start);
+    long *inc = malloc((size_t)nf * 3 * sizeof *inc);
+    if (!start || !inc) { free(start); free(inc); return FFC_ERR_MEMORY; }
+    for (long f = 0; f < nf; f++)
+        for (int a = 0; a < 3; a++) start[t->F[f * nn + a] + 1]++;
+    for (long v = 0; v < nv; v++) start[v + 1] += start[v];
+    for (long f = 0; f < nf; f++)
+        for (int a = 0; a < 3; a++) inc[start[t->F[f * nn + a]]++] = f;
+    for (long v = nv; v > 0; v--) start[v] = start[v - 1];
+    start[0] = 0;
+    memset(t->vrim, 0, (size_t)nf * 3);
+    for (long f = 0; f < nf; f++)
+        for (int e = 0; e < 3; e++) {
+            const long a = t->F[f * nn + e], b = t->F[f * nn + (e + 1) % 3];
+            long g = -1;
+            for (long k = start[a]; k < start[a + 1] && g < 0; k++) {
+                long h = inc[k];
+                if (h == f) continue;
+                for (int c = 0; c < 3; c++)
+                    if (t->F[h * nn + c] == b) { g = h; break; }
+            }
+            t->nbr[f * 3 + e] = g;
+        }
+    /* rim vertices: on an edge without a neighbour, seen from every facet */
+    unsigned char *rim = calloc((size_t)nv, 1);
+    if (!rim) { free(start); free(inc); return FFC_ERR_MEMORY; }
+    for (long f = 0; f < nf; f++)
+        for (int e = 0; e < 3; e++)
+            if (t->nbr[f * 3 + e] < 0) {
+                rim[t->F[f * nn + e]] = 1;
+                rim[t->F[f * nn + (e + 1) % 3]] = 1;
+            }
+    for (long f = 0; f < nf; f++)
+        for (int a = 0; a < 3; a++) t->vrim[f * 3 + a] = rim[t->F[f * nn + a]];
+    free(rim);
+    free(start);
+    free(inc);
+    return FFC_OK;
+}
+
+void ffc_tree_free(ffc_tree *t)
+{
+    if (!t) return;
+    free(t->F);
+    free(t->slot2f);
+    free(t->f2slot);
+    free(t->hf);
+    free(t->fx);
+    free(t->box);
+    free(t->nbr);
+    free(t->vrim);
+    free(t);
+}
+
+long ffc_tree_bytes(const ffc_tree *t)
+{
+    if (!t) return 0;
+    return (long)sizeof *t + t->nf * (long)(t->nn * sizeof(long) + 2 * sizeof(long) + sizeof(double) +
+                                            t->nn * 3 * sizeof(double) + 3 * sizeof(long) + 3) +
+           2 * t->P * 6 * (long)sizeof(double);
+}
+
+int ffc_tree_build(int nn, long nf, const long F[], long nv, const double x[],
+                   ffc_tree **out)
+{
+    if (!out) return FFC_ERR_NULL;
+    *out = NULL;
+    if (nn != 3 && nn != 6) return FFC_ERR_NODES;
+    if (!F || !x) return FFC_ERR_NULL;
+    if (nf <= 0) return FFC_ERR_EMPTY;
+    if (nv <= 0) return FFC_ERR_SIZE;
+    for (long k = 0; k < nf * nn; k++)
+        if (F[k] < 0 || F[k] >= nv) return FFC_ERR_INDEX;
+
+    ffc_tree *t = calloc(1, sizeof *t);
+    if (!t) return FFC_ERR_MEMORY;
+    t->nn = nn;
+    t->nf = nf;
+    t->nv = nv;
+    long L = (nf + LEAF - 1) / LEAF, P = 1;
+    while (P < L) P *= 2;
+    t->P = P;
+    t->F = malloc((size_t)nf * nn * sizeof *t->F);
+    t->slot2f = malloc((size_t)nf * sizeof *t->slot2f);
+    t->hf = malloc((size_t)nf * sizeof *t->hf);
+    t->f2slot = malloc((size_t)nf * sizeof *t->f2slot);
+    t->fx = malloc((size_t)nf * nn * 3 * sizeof *t->fx);
+    t->box = malloc((size_t)2 * P * 6 * sizeof *t->box);
+    t->nbr = malloc((size_t)nf * 3 * sizeof *t->nbr);
+    t->vrim = malloc((size_t)nf * 3);
+    uint64_t *key = malloc((size_t)nf * sizeof *key);
+    int st = FFC_ERR_MEMORY;
+    if (!t->F || !t->slot2f || !t->hf || !t->f2slot || !t->fx || !t->box || !t->nbr || !t->vrim || !key) goto fail;
+    memcpy(t->F, F, (size_t)nf * nn * sizeof *F);
+
+    /* Morton keys of the facet centroids */
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (long f = 0; f < nf; f++)
+        for (int i = 0; i < 3; i++) {
+            double c = (x[3 * F[f * nn] + i] + x[3 * F[f * nn + 1] + i] + x[3 * F[f * nn + 2] + i]) / 3.0;
+            if (!isfinite(c)) { st = FFC_ERR_NONFINITE; goto fail; }
+            lo[i] = fmin(lo[i], c);
+            hi[i] = fmax(hi[i], c);
+        }
+    double span = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+    double sc = span > 0 ? 2097151.0 / span : 0.0;
+    for (long f = 0; f < nf; f++) {
+        uint64_t k = 0;
+        for (int i = 0; i < 3; i++) {
+            double c = (x[3 * F[f * nn] + i] + x[3 * F[f * nn + 1] + i] + x[3 * F[f * nn + 2] + i]) / 3.0;
+            k |= spread3((uint64_t)((c - lo[i]) * sc)) << i;
+        }
+        key[f] = k;
+        t->slot2f[f] = f;
+    }
+    if ((st = radix_sort(nf, key, t->slot2f))) goto fail;
+    for (long k = 0; k < nf; k++) t->f2slot[t->slot2f[k]] = k;
+    free(key);
+    key = NULL;
+    if ((st = fill_geometry(t, x))) goto fail;
+    if ((st = build_adjacency(t))) goto fail;
+    *out = t;
+    return FFC_OK;
+fail:
+    free(key);
+    ffc_tree_free(t);
+    return st;
+}
+
+int ffc_tree_refit(ffc_tree *t, const double x[])
+{
+    if (!t || !x) return FFC_ERR_NULL;
+    return fill_geometry(t, x);
+}
+
+/* ------------------------------------------------------------- queries */
+/* Squared distance from p to the flat triangle (a, b, c) by its Voronoi
+ * regions; *inside is 1 when the closest point is interior. */
+static double tri_d2(const double *a, const double *b, const double *c, const double p[3],
+                     int *inside)
+{
+    double ab[3], ac[3], ap[3], q[3];
+    for (int i = 0; i < 3; i++) { ab[i] = b[i] - a[i]; ac[i] = c[i] - a[i]; ap[i] = p[i] - a[i]; }
+    double d1 = ffc__dot(ab, ap), d2 = ffc__dot(ac, ap);
+    *inside = 0;
+    if (d1 <= 0 && d2 <= 0) { for (int i = 0; i < 3; i++) q[i] = a[i]; goto done; }
+    double bp[3] = {p[0] - b[0], p[1] - b[1], p[2] - b[2]};
+    double d3 = ffc__dot(ab, bp), d4 = ffc__dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) { for (int i = 0; i < 3; i++) q[i] = b[i]; goto done; }
+    double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        double v = d1 / (d1 - d3);
+        for (int i = 0; i < 3; i++) q[i] = a[i] + v * ab[i];
+        goto done;
+    }
+    double cp[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+    double d5 = ffc__dot(ab, cp), d6 = ffc__dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) { for (int i = 0; i < 3; i++) q[i] = c[i]; goto done; }
+    double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        double w = d2 / (d2 - d6);
+        for (int i = 0; i < 3; i++) q[i] = a[i] + w * ac[i];
+        goto done;
+    }
+    double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        for (int i = 0; i < 3; i++) q[i] = b[i] + w * (c[i] - b[i]);
+        goto done;
+    }
+    {
+        double den = 1.0 / (va + vb + vc), v = vb * den, w = vc * den;
+        for (int i = 0; i < 3; i++) q[i] = a[i] + v * ab[i] + w * ac[i];
+        *inside = 1;
+    }
+done:
+    for (int i = 0; i < 3; i++) q[i] = p[i] - q[i];
+    return ffc__dot(q, q);
+}
+
+/* A candidate partner and the rule that orders candidates: the smaller
+ * distance; within round-off (ties at shared edges and vertices) an
+ * interior foot, then the lower facet index. */
+typedef struct {
+    long f, slot;    /* facet and its tree slot, f = -1 for none yet */
+    double d2;       /* squared distance (length^2) */
+    double lim2;     /* squared pruning radius: d2 plus the tie tolerance */
+    int inside;      /* the foot is interior */
+} cand_t;
+
+static void cand_init(cand_t *c, double rmax)
+{
+    c->f = -1;
+    c->slot = -1;
+    c->d2 = rmax * rmax;
+    c->lim2 = c->d2 * (1.0 + 1e-12);
+    c->inside = 0;
+}
+
+static int cand_better(const cand_t *a, const cand_t *b, double tol2)
+{
+    if (b->f < 0) return a->d2 <= b->d2;
+    if (a->d2 < b->d2 - tol2) return 1;
+    if (a->d2 > b->d2 + tol2) return 0;
+    if (a->inside != b->inside) return a->inside;
+    return a->f < b->f;
+}
+
+/* tolerance of ties on squared distances: distances equal within
+ * 1e-12 d + 1e-13 hmax (round-off of coordinates of size ~hmax) */
+static double tie_tol2(const ffc_tree *t, double d2)
+{
+    double d = sqrt(d2), tol = 1e-12 * d + 1e-13 * t->hmax;
+    return 2.0 * d * tol + tol * tol;
+}
+
+static void consider(const ffc_tree *t, long s, const double p[3], cand_t *best)
+{
+    cand_t c;
+    c.f = t->slot2f[s];
+    c.slot = s;
+    const double *X = t->fx + s * t->nn * 3;
+    if (t->nn == 3) {
+        c.d2 = tri_d2(X, X + 3, X + 6, p, &c.inside);
+    } else {
+        ffc_proj pr;
+        if (ffc_project(6, (const double(*)[3])X, p, &pr) < 0) return;
+        c.d2 = pr.dist * pr.dist;
+        c.inside = pr.where == FFC_FOOT_INSIDE;
+    }
+    if (cand_better(&c, best, best->lim2 - best->d2)) { *best = c; best->lim2 = c.d2 + tie_tol2(t, c.d2); }
+}
+
+/* Closest facet within rmax.  A warm start (a facet near the previous
+ * query's partner, or -1) and its edge neighbours tighten the bound before
+ * the traversal; the result does not depend on it. */
+static void nearest(const ffc_tree *t, const double p[3], double rmax, long warm, cand_t *best)
+{
+    cand_init(best, rmax);
+    if (warm >= 0) {
+        consider(t, t->f2slot[warm], p, best);
+        for (int e = 0; e < 3; e++) {
+            long g = t->nbr[warm * 3 + e];
+            if (g >= 0) consider(t, t->f2slot[g], p, best);
+        }
+    }
+    /* stack of (node, squared box distance): each box is measured once */
+    long stack[STACK];
+    double sd2[STACK];
+    int sp = 0;
+    stack[sp] = 1;
+    sd2[sp++] = box_d2(t->box + 6, p);
+    while (sp > 0) {
+        --sp;
+        const long i = stack[sp];
+        const double lim = best->lim2;
+        if (sd2[sp] > lim) continue;
+        if (i >= t->P) {
+            long j = i - t->P;
+            for (long s = j * LEAF; s < (j + 1) * LEAF && s < t->nf; s++) consider(t, s, p, best);
+            continue;
+        }
+        const long l = 2 * i, r = l + 1;
+        const double dl = box_d2(t->box + 6 * l, p), dr = box_d2(t->box + 6 * r, p);
+        /* push the farther child first so that the nearer one is visited first */
+        if (dl <= dr) {
+            if (dr <= lim) { stack[sp] = r; sd2[sp++] = dr; }
+            if (dl <= lim) { stack[sp] = l; sd2[sp++] = dl; }
+        } else {
+            if (dl <= lim) { stack[sp] = l; sd2[sp++] = dl; }
+            if (dr <= lim) { stack[sp] = r; sd2[sp++] = dr; }
+        }
+    }
+    if (best->f >= 0 && best->d2 > rmax * rmax) best->f = -1;
+}
+
+/* full projection onto the chosen facet */
+static int finish(const ffc_tree *t, const cand_t *c, const double p[3], ffc_proj *pr)
+{
+    return ffc_project(t->nn, (const double(*)[3])(t->fx + c->slot * t->nn * 3), p, pr);
+}
+
+int ffc_tree_nearest(const ffc_tree *t, const double p[3], double rmax,
+                     long *facet, ffc_proj *pr)
+{
+    if (!t || !p || !facet || !pr) return FFC_ERR_NULL;
+    if (!(rmax >= 0)) return FFC_ERR_VALUE;
+    for (int i = 0; i < 3; i++)
+        if (!isfinite(p[i])) return FFC_ERR_NONFINITE;
+    cand_t best;
+    nearest(t, p, rmax, -1, &best);
+    *facet = best.f;
+    if (best.f >= 0) {
+        int st = finish(t, &best, p, pr);
+        if (st < 0) return st;
+    }
+    return FFC_OK;
+}
+
+ffc_search_opts ffc_search_defaults(void)
+{
+    ffc_search_opts o = {2.0, 0.0, 1e-9};
+    return o;
+}
+
+/* local-coordinate distance of xi outside the reference triangle */
+static double outside(const double xi[2])
+{
+    return fmax(0.0, fmax(-xi[0], fmax(-xi[1], xi[0] + xi[1] - 1.0)));
+}
+
+/* Turns the closest candidate into a link (or none): feet clamped onto
+ * the rim of the master surface are outside its footprint, and points
+ * farther than the capture distance of their partner get no link. */
+static void make_link(const ffc_tree *t, const cand_t *c, const double p[3],
+                      const ffc_search_opts *o, ffc_link *lk)
+{
+    lk->mf = -1;
+    lk->where = FFC_FOOT_INSIDE;
+    lk->xm[0] = lk->xm[1] = 0.0;
+    lk->gap = 0.0;
+    lk->n[0] = lk->n[1] = lk->n[2] = 0.0;
+    if (c->f < 0) return;
+    ffc_proj prv;
+    if (finish(t, c, p, &prv) < 0) return;
+    const ffc_proj *pr = &prv;
+    lk->where = pr->where;
+    if (pr->where != FFC_FOOT_INSIDE && outside(pr->xi_free) > o->edge_tol) {
+        int rim = pr->where <= FFC_FOOT_EDGE2 ? t->nbr[c->f * 3 + pr->where - FFC_FOOT_EDGE0] < 0
+                                              : t->vrim[c->f * 3 + pr->where - FFC_FOOT_VERTEX0];
+        if (rim) return;
+    }
+    if (pr->dist > fmax(o->capture_abs, o->capture_rel * t->hf[c->f])) return;
+    lk->mf = c->f;
+    lk->xm[0] = pr->xi[0];
+    lk->xm[1] = pr->xi[1];
+    lk->gap = pr->gap;
+    for (int i = 0; i < 3; i++) lk->n[i] = pr->n[i];
+}
+
+static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], long nvs,
+                         const double xs[], int qdeg, const ffc_search_opts *o, long cap,
+                         ffc_link links[], int brute)
+{
+    if (!t || !Fs || !xs || !links) return FFC_ERR_NULL;
+    if (nns != 3 && nns != 6) return FFC_ERR_NODES;
+    if (nfs <= 0) return FFC_ERR_EMPTY;
+    ffc_search_opts def = ffc_search_defaults();
+    if (!o) o = &def;
+    if (!(o->capture_rel >= 0) || !(o->capture_abs >= 0) || !(o->edge_tol >= 0) ||
+        isinf(o->capture_rel) || isinf(o->capture_abs))
+        return FFC_ERR_VALUE;
+    double qxi[16][2], qw[16];
+    int nq = ffc_quad(qdeg, 16, qxi, qw);
+    if (nq < 0) return nq;
+    if (cap < nfs * nq) return FFC_ERR_CAPACITY;
+    for (long k = 0; k < nfs * nns; k++)
+        if (Fs[k] < 0 || Fs[k] >= nvs) return FFC_ERR_INDEX;
+    const double rmax = fmax(o->capture_abs, o->capture_rel * t->hmax);
+    long found = 0, warm = -1;
+    for (long f = 0; f < nfs; f++) {
+        double X[FFC_MAXNODES][3];
+        for (int a = 0; a < nns; a++)
+            for (int i = 0; i < 3; i++) {
+                X[a][i] = xs[3 * Fs[f * nns + a] + i];
+                if (!isfinite(X[a][i])) return FFC_ERR_NONFINITE;
+            }
+        for (int q = 0; q < nq; q++) {
+            double N[FFC_MAXNODES], p[3] = {0, 0, 0};
+            ffc_shape(nns, qxi[q], N, NULL);
+            for (int a = 0; a < nns; a++)
+                for (int i = 0; i < 3; i++) p[i] += N[a] * X[a][i];
+            cand_t best;
+            if (brute) {
+                cand_init(&best, rmax);
+                /* every facet, no pruning */
+                for (long s = 0; s < t->nf; s++) consider(t, s, p, &best);
+                if (best.f >= 0 && best.d2 > rmax * rmax) best.f = -1;
+            } else {
+                nearest(t, p, rmax, warm, &best);
+                if (best.f >= 0) warm = best.f;
+            }
+            ffc_link *lk = links + f * nq + q;
+            lk->sf = f;
+            lk->q = q;
+            lk->xs[0] = qxi[q][0];
+            lk->xs[1] = qxi[q][1];
+            make_link(t, &best, p, o, lk);
+            if (lk->mf >= 0) found++;
+        }
+    }
+    return found <= 2147483647L ? (int)found : FFC_ERR_SIZE;
+}
+
+int ffc_search(const ffc_tree *t, int nns, long nfs, const long Fs[],
+               long nvs, const double xs_nodes[], int qdeg,
+               const ffc_search_opts *o, long cap, ffc_link links[])
+{
+    return search_common(t, nns, nfs, Fs, nvs, xs_nodes, qdeg, o, cap, links, 0);
+}
+
+int ffc_search_brute(const ffc_tree *t, int nns, long nfs, const long Fs[],
+                     long nvs, const double xs_nodes[], int qdeg,
+                     const ffc_search_opts *o, long cap, ffc_link links[])
+{
+    return search_common(t, nns, nfs, Fs, nvs, xs_nodes, qdeg, o, cap, links, 1);
+}

@@ -1,0 +1,346 @@
+/* test_search.c: contact search against an independent brute force
+ * (projection onto every master facet), on flat, curved and perturbed
+ * non-matching surfaces; rigid-motion invariance; capture and footprint. */
+#include "ffc_test.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+    int nn;
+    long nv, nf;
+    double *x;   /* [nv*3] */
+    long *F;     /* [nf*nn] */
+} surf_t;
+
+static void surf_free(surf_t *s) { free(s->x); free(s->F); }
+
+/* Triangulated rectangle [x0,x1] x [y0,y1], n x m cells, heights z(x, y),
+ * in-plane jitter of interior nodes, 3- or 6-node facets (mid-edge nodes
+ * placed on z(x, y) as well).  Normals point along +z when up > 0. */
+typedef double (*zfun_t)(double, double);
+static surf_t make_grid(int nn, int n, int m, double x0, double y0, double x1, double y1,
+                        zfun_t z, double jitter, int up, uint64_t seed)
+{
+    surf_t s;
+    const int k = nn == 3 ? 1 : 2; /* nodes per cell edge */
+    const int NX = k * n + 1, NY = k * m + 1;
+    s.nn = nn;
+    s.nv = (long)NX * NY;
+    s.nf = 2L * n * m;
+    s.x = malloc(s.nv * 3 * sizeof *s.x);
+    s.F = malloc(s.nf * nn * sizeof *s.F);
+    for (int j = 0; j < NY; j++)
+        for (int i = 0; i < NX; i++) {
+            double u = (double)i / (NX - 1), v = (double)j / (NY - 1);
+            /* jitter whole cells' corner nodes only, keep mid-nodes central */
+            if (i % k == 0 && j % k == 0 && i > 0 && j > 0 && i < NX - 1 && j < NY - 1) {
+                u += test_rand(&seed, -jitter, jitter) / n;
+                v += test_rand(&seed, -jitter, jitter) / m;
+            }
+            double *p = s.x + 3 * ((long)j * NX + i);
+            p[0] = x0 + u * (x1 - x0);
+            p[1] = y0 + v * (y1 - y0);
+            p[2] = z(p[0], p[1]);
+        }
+    if (nn == 6) /* mid-edge nodes halfway between their corners, on z */
+        for (int j = 0; j < NY; j++)
+            for (int i = 0; i < NX; i++) {
+                if (i % 2 == 0 && j % 2 == 0) continue;
+                int ia = i - i % 2, ib = i + i % 2, ja = j - j % 2, jb = j + j % 2;
+                if (i % 2 && j % 2) { ia = i - 1; ib = i + 1; ja = j + 1; jb = j - 1; } /* diagonal */
+                double *p = s.x + 3 * ((long)j * NX + i);
+                const double *a = s.x + 3 * ((long)ja * NX + ia), *b = s.x + 3 * ((long)jb * NX + ib);
+                p[0] = 0.5 * (a[0] + b[0]);
+                p[1] = 0.5 * (a[1] + b[1]);
+                p[2] = z(p[0], p[1]);
+            }
+    long f = 0;
+#define ID(i, j) ((long)(j) * NX + (i))
+    for (int j = 0; j < m; j++)
+        for (int i = 0; i < n; i++) {
+            int I = k * i, J = k * j;
+            /* two triangles: (a b d), (b c d) with a=(I,J) b=(I+k,J) c=(I+k,J+k) d=(I,J+k) */
+            long t[2][6];
+            long a = ID(I, J), b = ID(I + k, J), c = ID(I + k, J + k), d = ID(I, J + k);
+            t[0][0] = a; t[0][1] = b; t[0][2] = d;
+            t[1][0] = b; t[1][1] = c; t[1][2] = d;
+            if (nn == 6) {
+                t[0][3] = ID(I + 1, J); t[0][4] = ID(I + 1, J + 1); t[0][5] = ID(I, J + 1);
+                t[1][3] = ID(I + 2, J + 1); t[1][4] = ID(I + 1, J + 2); t[1][5] = ID(I + 1, J + 1);
+            }
+            for (int q = 0; q < 2; q++, f++) {
+                if (!up) { /* reverse orientation */
+                    long tmp = t[q][1]; t[q][1] = t[q][2]; t[q][2] = tmp;
+                    if (nn == 6) { tmp = t[q][3]; t[q][3] = t[q][5]; t[q][5] = tmp; }
+                }
+                for (int a2 = 0; a2 < nn; a2++) s.F[f * nn + a2] = t[q][a2];
+            }
+        }
+#undef ID
+    return s;
+}
+
+static double z_flat(double x, double y) { (void)x; (void)y; return 0.0; }
+static double z_slave(double x, double y) { return 0.01 + 0.005 * sin(7 * x) * cos(5 * y); }
+static double z_wavy(double x, double y) { return 0.03 * sin(6 * x + 1) * sin(4 * y); }
+/* sphere of radius 0.6 centred at (0.5, 0.5, 0.62), lower cap */
+static double z_ball(double x, double y)
+{
+    double r2 = (x - 0.5) * (x - 0.5) + (y - 0.5) * (y - 0.5);
+    return 0.62 - sqrt(fmax(0.36 - r2, 0.0));
+}
+
+/* slave points of a link list */
+static void slave_point(const surf_t *s, const ffc_link *lk, double p[3])
+{
+    double N[6];
+    ffc_shape(s->nn, lk->xs, N, NULL);
+    p[0] = p[1] = p[2] = 0;
+    for (int a = 0; a < s->nn; a++)
+        for (int i = 0; i < 3; i++) p[i] += N[a] * s->x[3 * s->F[lk->sf * s->nn + a] + i];
+}
+
+/* independent brute force: the closest master facet by direct projection */
+static double brute(const surf_t *m, const double p[3], long *bf, ffc_proj *bpr)
+{
+    double best = INFINITY;
+    *bf = -1;
+    for (long f = 0; f < m->nf; f++) {
+        double X[6][3];
+        for (int a = 0; a < m->nn; a++)
+            for (int i = 0; i < 3; i++) X[a][i] = m->x[3 * m->F[f * m->nn + a] + i];
+        ffc_proj pr;
+        if (ffc_project(m->nn, (const double(*)[3])X, p, &pr) < 0) continue;
+        if (pr.dist < best) { best = pr.dist; *bf = f; *bpr = pr; }
+    }
+    return best;
+}
+
+/* Runs the search and checks every link against the brute force: same
+ * distance to 1e-12 relative; same partner and gap unless the distances
+ * tie (foot on an edge or vertex shared by both candidates); points
+ * without link have no interior foot within the capture distance.
+ * Returns the number of links with a partner. */
+static long check_scene(const surf_t *m, const surf_t *s, int qdeg, const ffc_search_opts *o)
+{
+    ffc_tree *t;
+    assert_int_equal(ffc_tree_build(m->nn, m->nf, m->F, m->nv, m->x, &t), FFC_OK);
+    const int nq = ffc_quad_size(qdeg);
+    const long nl = s->nf * nq;
+    ffc_link *L = malloc(nl * sizeof *L), *B = malloc(nl * sizeof *B);
+    int found = ffc_search(t, s->nn, s->nf, s->F, s->nv, s->x, qdeg, o, nl, L);
+    assert_true(found >= 0);
+    /* the library's own unpruned loop gives identical links */
+    assert_int_equal(ffc_search_brute(t, s->nn, s->nf, s->F, s->nv, s->x, qdeg, o, nl, B), found);
+    long ties = 0;
+    for (long k = 0; k < nl; k++) {
+        assert_int_equal(L[k].mf, B[k].mf);
+        assert_int_equal(L[k].sf, k / nq);
+        assert_int_equal(L[k].q, k % nq);
+        double p[3];
+        slave_point(s, &L[k], p);
+        long bf;
+        ffc_proj bpr;
+        memset(&bpr, 0, sizeof bpr);
+        double bd = brute(m, p, &bf, &bpr);
+        if (L[k].mf < 0) {
+            /* no link: the closest foot is clamped on the rim or beyond capture */
+            if (bf >= 0 && bpr.where == FFC_FOOT_INSIDE) {
+                double X[3][3];
+                for (int a = 0; a < 3; a++)
+                    for (int i = 0; i < 3; i++) X[a][i] = m->x[3 * m->F[bf * m->nn + a] + i];
+                double h = sqrt(fmax(fmax((X[1][0]-X[0][0])*(X[1][0]-X[0][0])+(X[1][1]-X[0][1])*(X[1][1]-X[0][1])+(X[1][2]-X[0][2])*(X[1][2]-X[0][2]),
+                                          (X[2][0]-X[1][0])*(X[2][0]-X[1][0])+(X[2][1]-X[1][1])*(X[2][1]-X[1][1])+(X[2][2]-X[1][2])*(X[2][2]-X[1][2])),
+                                          (X[0][0]-X[2][0])*(X[0][0]-X[2][0])+(X[0][1]-X[2][1])*(X[0][1]-X[2][1])+(X[0][2]-X[2][2])*(X[0][2]-X[2][2])));
+                if (!(bd > fmax(o->capture_abs, o->capture_rel * h) * (1 - 1e-12)))
+                    fail_msg("point %ld: no link but interior foot at distance %g", k, bd);
+            }
+            continue;
+        }
+        /* the link's own distance */
+        double X[6][3];
+        for (int a = 0; a < m->nn; a++)
+            for (int i = 0; i < 3; i++) X[a][i] = m->x[3 * m->F[L[k].mf * m->nn + a] + i];
+        ffc_proj pr;
+        assert_true(ffc_project(m->nn, (const double(*)[3])X, p, &pr) >= 0);
+        assert_close(pr.dist, bd, 1e-12 * bd + 1e-15);
+        if (L[k].mf == bf) {
+            assert_close(L[k].gap, bpr.gap, 1e-12 * fabs(bpr.gap) + 1e-15);
+        } else {
+            /* a tie at a shared edge or vertex */
+            assert_true(pr.where != FFC_FOOT_INSIDE || bpr.where != FFC_FOOT_INSIDE);
+            ties++;
+        }
+    }
+    (void)ties;
+    free(L);
+    free(B);
+    ffc_tree_free(t);
+    return found;
+}
+
+static void test_flat_nonmatching(void **state)
+{
+    (void)state;
+    surf_t m = make_grid(3, 13, 11, 0, 0, 1, 1, z_flat, 0.3, 1, 1);
+    surf_t s = make_grid(3, 9, 10, 0.05, 0.05, 0.95, 0.95, z_slave, 0.3, 0, 2);
+    ffc_search_opts o = ffc_search_defaults();
+    for (int q = 1; q <= 6; q++) {
+        long found = check_scene(&m, &s, q, &o);
+        assert_int_equal(found, s.nf * ffc_quad_size(q)); /* all inside the footprint */
+    }
+    surf_free(&m);
+    surf_free(&s);
+}
+
+static void test_curved(void **state)
+{
+    (void)state;
+    ffc_search_opts o = ffc_search_defaults();
+    /* sphere (slave) over a plane (master), and the plane against a curved
+     * 6-node sphere master */
+    surf_t plane = make_grid(3, 16, 16, -0.1, -0.1, 1.1, 1.1, z_flat, 0.25, 1, 3);
+    surf_t ball = make_grid(3, 12, 12, 0.2, 0.2, 0.8, 0.8, z_ball, 0.2, 0, 4);
+    assert_true(check_scene(&plane, &ball, 4, &o) == ball.nf * 6);
+    surf_t ball6 = make_grid(6, 8, 8, 0.1, 0.1, 0.9, 0.9, z_ball, 0.2, 0, 5);
+    surf_t low = make_grid(3, 10, 10, 0.2, 0.2, 0.8, 0.8, z_flat, 0.25, 1, 6);
+    for (long i = 0; i < low.nv; i++) low.x[3 * i + 2] = -0.05;
+    check_scene(&ball6, &low, 3, &o);
+    surf_t plane6 = make_grid(6, 9, 7, -0.1, -0.1, 1.1, 1.1, z_wavy, 0.2, 1, 8);
+    assert_true(check_scene(&plane6, &ball, 2, &o) == ball.nf * 3);
+    surf_free(&plane); surf_free(&ball); surf_free(&ball6); surf_free(&low); surf_free(&plane6);
+}
+
+static void test_perturbed(void **state)
+{
+    (void)state;
+    ffc_search_opts o = ffc_search_defaults();
+    for (int trial = 0; trial < 4; trial++) {
+        surf_t m = make_grid(3, 20, 17, 0, 0, 1, 1, z_wavy, 0.35, 1, 10 + trial);
+        surf_t s = make_grid(3, 11, 13, 0.02, 0.02, 0.98, 0.98, z_wavy, 0.35, 0, 20 + trial);
+        uint64_t seed = 30 + trial;
+        for (long i = 0; i < s.nv; i++) s.x[3 * i + 2] += test_rand(&seed, -0.02, 0.02);
+        check_scene(&m, &s, 3, &o);
+        surf_free(&m);
+        surf_free(&s);
+    }
+}
+
+/* rigid rotation and translation of the whole scene: same links */
+static void test_rigid_motion(void **state)
+{
+    (void)state;
+    surf_t m = make_grid(3, 12, 12, 0, 0, 1, 1, z_wavy, 0.3, 1, 40);
+    surf_t s = make_grid(3, 9, 9, 0.05, 0.05, 0.95, 0.95, z_slave, 0.3, 0, 41);
+    ffc_search_opts o = ffc_search_defaults();
+    const int nq = 6;
+    const long nl = s.nf * nq;
+    ffc_link *A = malloc(nl * sizeof *A), *Bm = malloc(nl * sizeof *Bm);
+    ffc_tree *t;
+    assert_int_equal(ffc_tree_build(3, m.nf, m.F, m.nv, m.x, &t), FFC_OK);
+    int fa = ffc_search(t, 3, s.nf, s.F, s.nv, s.x, 4, &o, nl, A);
+    ffc_tree_free(t);
+    double R[3][3];
+    const double ax[3] = {1, 2, -0.5}, tr[3] = {3, -7, 11};
+    test_rotation(ax, 2.1, R);
+    for (long i = 0; i < m.nv; i++) { double y[3]; test_move(R, tr, m.x + 3 * i, y); memcpy(m.x + 3 * i, y, sizeof y); }
+    for (long i = 0; i < s.nv; i++) { double y[3]; test_move(R, tr, s.x + 3 * i, y); memcpy(s.x + 3 * i, y, sizeof y); }
+    assert_int_equal(ffc_tree_build(3, m.nf, m.F, m.nv, m.x, &t), FFC_OK);
+    int fb = ffc_search(t, 3, s.nf, s.F, s.nv, s.x, 4, &o, nl, Bm);
+    ffc_tree_free(t);
+    assert_int_equal(fa, fb);
+    for (long k = 0; k < nl; k++) {
+        assert_int_equal(A[k].mf, Bm[k].mf);
+        if (A[k].mf < 0) continue;
+        assert_close(A[k].xm[0], Bm[k].xm[0], 1e-10);
+        assert_close(A[k].xm[1], Bm[k].xm[1], 1e-10);
+        assert_close(A[k].gap, Bm[k].gap, 1e-12 * 20);
+        double Rn[3];
+        const double zero[3] = {0, 0, 0};
+        test_move(R, zero, A[k].n, Rn);
+        for (int i = 0; i < 3; i++) assert_close(Rn[i], Bm[k].n[i], 1e-10);
+    }
+    free(A); free(Bm); surf_free(&m); surf_free(&s);
+}
+
+/* capture distance and footprint */
+static void test_capture_footprint(void **state)
+{
+    (void)state;
+    surf_t m = make_grid(3, 10, 10, 0, 0, 1, 1, z_flat, 0.0, 1, 50); /* h = 0.1 * sqrt 2 */
+    /* slave: a row of tiny facets, heights 0.05 .. 0.5, and some outside */
+    surf_t s = make_grid(3, 10, 1, -0.45, 0.3, 1.45, 0.31, z_flat, 0.0, 0, 51);
+    for (long i = 0; i < s.nv; i++) s.x[3 * i + 2] = 0.02 + 0.5 * (s.x[3 * i] + 0.45) / 1.9;
+    ffc_search_opts o = ffc_search_defaults();
+    o.capture_rel = 0.0;
+    o.capture_abs = 0.2;
+    check_scene(&m, &s, 1, &o);
+    ffc_tree *t;
+    ffc_tree_build(3, m.nf, m.F, m.nv, m.x, &t);
+    ffc_link L[20];
+    int found = ffc_search(t, 3, s.nf, s.F, s.nv, s.x, 1, &o, 20, L);
+    assert_true(found > 0 && found < 20);
+    for (int k = 0; k < 20; k++) {
+        double p[3];
+        slave_point(&s, &L[k], p);
+        int inside = p[0] > 0 && p[0] < 1 && p[1] > 0 && p[1] < 1;
+        int near = p[2] <= 0.2;
+        assert_int_equal(L[k].mf >= 0, inside && near);
+        if (L[k].mf >= 0) assert_close(L[k].gap, p[2], 1e-14);
+    }
+    /* bad options and sizes */
+    o.capture_abs = -1;
+    assert_int_equal(ffc_search(t, 3, s.nf, s.F, s.nv, s.x, 1, &o, 20, L), FFC_ERR_VALUE);
+    o.capture_abs = NAN;
+    assert_int_equal(ffc_search(t, 3, s.nf, s.F, s.nv, s.x, 1, &o, 20, L), FFC_ERR_VALUE);
+    o = ffc_search_defaults();
+    assert_int_equal(ffc_search(t, 3, s.nf, s.F, s.nv, s.x, 9, &o, 20, L), FFC_ERR_QUAD);
+    assert_int_equal(ffc_search(t, 3, s.nf, s.F, s.nv, s.x, 2, &o, 20, L), FFC_ERR_CAPACITY);
+    assert_int_equal(ffc_search(t, 3, 0, s.F, s.nv, s.x, 1, &o, 20, L), FFC_ERR_EMPTY);
+    s.x[4] = INFINITY;
+    assert_int_equal(ffc_search(t, 3, s.nf, s.F, s.nv, s.x, 1, &o, 20, L), FFC_ERR_NONFINITE);
+    ffc_tree_free(t);
+    ffc_tree *t2 = (ffc_tree *)1;
+    assert_int_equal(ffc_tree_build(3, 0, m.F, m.nv, m.x, &t2), FFC_ERR_EMPTY);
+    assert_null(t2);
+    m.x[5] = NAN;
+    assert_int_equal(ffc_tree_build(3, m.nf, m.F, m.nv, m.x, &t2), FFC_ERR_NONFINITE);
+    surf_free(&m); surf_free(&s);
+}
+
+/* a refit after moving the master keeps queries exact */
+static void test_refit(void **state)
+{
+    (void)state;
+    surf_t m = make_grid(3, 15, 15, 0, 0, 1, 1, z_flat, 0.3, 1, 60);
+    surf_t s = make_grid(3, 8, 8, 0.1, 0.1, 0.9, 0.9, z_slave, 0.3, 0, 61);
+    ffc_tree *t;
+    ffc_tree_build(3, m.nf, m.F, m.nv, m.x, &t);
+    for (long i = 0; i < m.nv; i++) m.x[3 * i + 2] = z_wavy(m.x[3 * i], m.x[3 * i + 1]);
+    assert_int_equal(ffc_tree_refit(t, m.x), FFC_OK);
+    const long nl = s.nf * 3;
+    ffc_link *A = malloc(nl * sizeof *A);
+    ffc_search_opts o = ffc_search_defaults();
+    assert_true(ffc_search(t, 3, s.nf, s.F, s.nv, s.x, 2, &o, nl, A) >= 0);
+    ffc_tree_free(t);
+    /* equal to a fresh build */
+    long found = check_scene(&m, &s, 2, &o);
+    long cnt = 0;
+    for (long k = 0; k < nl; k++) cnt += A[k].mf >= 0;
+    assert_int_equal(cnt, found);
+    free(A); surf_free(&m); surf_free(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_flat_nonmatching),
+        cmocka_unit_test(test_curved),
+        cmocka_unit_test(test_perturbed),
+        cmocka_unit_test(test_rigid_motion),
+        cmocka_unit_test(test_capture_footprint),
+        cmocka_unit_test(test_refit),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
