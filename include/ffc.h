@@ -240,6 +240,86 @@ int ffc_search_brute(const ffc_tree *t, int nns, long nfs, const long Fs[],
                      long nvs, const double xs_nodes[], int qdeg,
                      const ffc_search_opts *o, long cap, ffc_link links[]);
 
+/* ------------------------------------------------ normal contact links */
+/* Augmented-Lagrangian normal contact (after Laursen; the seed's
+ * ContactLink3D).  Sign convention: gap g = n2 . (x1 - x2) >= 0 when open;
+ * contact pressure t_N = <lambda_N - eps_N g> (Macaulay bracket), >= 0.
+ * The seed writes g_seed = -g, t_N = <lambda_N + eps_N g_seed>: the same. */
+
+/* State of one link after an evaluation. */
+typedef struct {
+    double x[3];       /* slave point, current configuration (length) */
+    double xi[2];      /* master foot on the facet's extension (1) */
+    double n[3];       /* unit master normal at the foot (1) */
+    double gap;        /* g (length) */
+    double tn;         /* contact pressure t_N (force/length^2) */
+    double da;         /* w * area element: the point's area (length^2) */
+    int active;        /* 1 when lambda_N - eps_N g > 0 */
+} ffc_link_state;
+
+/* Residual and tangent of one link: slave facet Xs[ns][3] (current
+ * positions), its reference positions Xs0[ns][3] (area element when
+ * effects->finite_def == 0), slave point xs with quadrature weight w,
+ * master facet Xm[nm][3] (current); multiplier lambda (force/length^2),
+ * penalty eps (force/length^3, > 0).  Unknowns: [slave nodes, master
+ * nodes] x (x, y, z), nd = 3 (ns + nm).
+ * Outputs: st; R[nd] the contribution to the internal-force residual;
+ * K[nd][nd] (row stride FFC_MAXDOF) its derivative, or K == NULL for the
+ * residual only.  An inactive link gives R = 0, K = 0. */
+int ffc_link_normal(const ffc_effects *effects, int ns, const double Xs[][3],
+                    const double Xs0[][3], const double xs[2], double w,
+                    int nm, const double Xm[][3], double lambda, double eps,
+                    ffc_link_state *st, double R[FFC_MAXDOF],
+                    double K[FFC_MAXDOF][FFC_MAXDOF]);
+
+/* The nodes of one contact pair: slave and master facets into a common
+ * node numbering; node i has reference position X[3i..3i+2] and
+ * displacement u[3i..3i+2]; its degrees of freedom are 3i, 3i+1, 3i+2. */
+typedef struct {
+    int ns;            /* nodes per slave facet (3 or 6) */
+    long nfs;          /* slave facets */
+    const long *Fs;    /* [nfs*ns] slave facet nodes */
+    int nm;            /* nodes per master facet (3 or 6) */
+    long nfm;          /* master facets */
+    const long *Fm;    /* [nfm*nm] master facet nodes */
+    long nv;           /* nodes */
+    const double *X;   /* [nv*3] reference positions (length) */
+    const double *u;   /* [nv*3] displacements (length) */
+} ffc_pair;
+
+/* Summary of an assembly or augmentation. */
+typedef struct {
+    long linked;       /* links with a master partner */
+    long active;       /* links with t_N > 0 */
+    double max_pen;    /* largest penetration max(0, -g) over linked points (length) */
+    double max_dlam;   /* largest |lambda_new - lambda| (augmentation only) */
+    double max_tn;     /* largest contact pressure */
+    double force[3];   /* total contact force on the slave side (force) */
+} ffc_stats;
+
+/* Adds the contact residual of all links into R[3nv] and writes the
+ * tangent as triplets (Ti, Tj, Tv)[cap] (NULL: residual only).  lambda[nl]
+ * per link.  *ntrip is the number of triplets written, or the number
+ * needed when FFC_ERR_CAPACITY is returned (R is then incomplete).
+ * On error *bad is the link at fault. */
+int ffc_assemble(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
+                 long nl, const ffc_link links[], const double lambda[],
+                 double eps, double R[], long cap, long Ti[], long Tj[],
+                 double Tv[], long *ntrip, ffc_stats *stats, long *bad);
+
+/* Uzawa update lambda <- <lambda - eps g> for every link (0 without a
+ * partner); stats->max_dlam measures the change. */
+int ffc_augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
+                long nl, const ffc_link links[], double lambda[], double eps,
+                ffc_stats *stats, long *bad);
+
+/* Per-link output P[nl*FFC_POINT_COLS]: x, y, z (current slave point),
+ * gap, t_N, active, area da, master facet. */
+#define FFC_POINT_COLS 8
+int ffc_points(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
+               long nl, const ffc_link links[], const double lambda[],
+               double eps, double P[], long *bad);
+
 #ifdef __cplusplus
 }
 #endif

@@ -21,4 +21,8 @@ static inline void ffc__cross(const double a[3], const double b[3], double c[3])
 
 double ffc__facet_size2(const double X[][3]);
 
+#include "ffc.h"
+/* Foot on the facet's extension (no clamping): xi = xi_free. */
+int ffc__project_free(int nn, const double X[][3], const double p[3], ffc_proj *out);
+
 #endif

@@ -138,7 +138,10 @@ static double edge_min(int nn, const double X[][3], const double p[3], int e,
     return best;
 }
 
-int ffc_project(int nn, const double X[][3], const double p[3], ffc_proj *out)
+/* Unconstrained stationary point of |p - x(xi)| (the foot on the facet's
+ * extension); fills xi = xi_free, the foot, normal and gap at it, and
+ * where = FFC_FOOT_INSIDE. */
+int ffc__project_free(int nn, const double X[][3], const double p[3], ffc_proj *out)
 {
     if (!X || !p || !out) return FFC_ERR_NULL;
     if (nn != 3 && nn != 6) return FFC_ERR_NODES;
@@ -167,9 +170,27 @@ int ffc_project(int nn, const double X[][3], const double p[3], ffc_proj *out)
         int st = newton_free(nn, X, p, xi, &out->iters, h2);
         if (st) return st;
     }
-    out->xi_free[0] = xi[0];
-    out->xi_free[1] = xi[1];
+    out->xi[0] = out->xi_free[0] = xi[0];
+    out->xi[1] = out->xi_free[1] = xi[1];
+    out->where = FFC_FOOT_INSIDE;
+    ffc_point g;
+    int st = ffc_facet_point(nn, X, xi, &g);
+    if (st) return st;
+    double r[3] = {p[0] - g.x[0], p[1] - g.x[1], p[2] - g.x[2]};
+    for (int i = 0; i < 3; i++) {
+        out->x[i] = g.x[i];
+        out->n[i] = g.n[i];
+    }
+    out->gap = ffc__dot(g.n, r);
+    out->dist = sqrt(ffc__dot(r, r));
+    return FFC_OK;
+}
 
+int ffc_project(int nn, const double X[][3], const double p[3], ffc_proj *out)
+{
+    int st0 = ffc__project_free(nn, X, p, out);
+    if (st0) return st0;
+    double xi[2] = {out->xi_free[0], out->xi_free[1]};
     int status = FFC_OK;
     out->where = FFC_FOOT_INSIDE;
     if (xi[0] < -INSIDE_TOL || xi[1] < -INSIDE_TOL || xi[0] + xi[1] > 1.0 + INSIDE_TOL) {

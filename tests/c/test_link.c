@@ -1,0 +1,270 @@
+/* test_link.c: normal contact link: tangent against central differences
+ * of the residual (separated and in contact, flat and curved, 3/6 nodes,
+ * sliding feet, small strain and finite deformation), residual against
+ * the contact potential, assembly, augmentation and point output. */
+#include "ffc_test.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+    int ns, nm;
+    double Xs[6][3], Xs0[6][3], Xm[6][3];
+    double xs[2], w, lambda, eps;
+    ffc_effects fx;
+} lcase;
+
+static double *lc_coord(lcase *c, int k)
+{
+    return k < 3 * c->ns ? &c->Xs[k / 3][k % 3] : &c->Xm[(k - 3 * c->ns) / 3][k % 3];
+}
+
+static int lc_eval(const lcase *c, ffc_link_state *st, double R[FFC_MAXDOF], double K[FFC_MAXDOF][FFC_MAXDOF])
+{
+    return ffc_link_normal(&c->fx, c->ns, (const double(*)[3])c->Xs, (const double(*)[3])c->Xs0, c->xs, c->w,
+                           c->nm, (const double(*)[3])c->Xm, c->lambda, c->eps, st, R, K);
+}
+
+/* A slave facet near a (possibly curved, perturbed) master facet with its
+ * point's foot inside; offset = normal distance of the slave point. */
+static void lc_make(lcase *c, int ns, int nm, int finite, double offset, uint64_t *s)
+{
+    static const double T3[3][3] = {{0.1, -0.2, 0.3}, {1.3, 0.1, 0.2}, {0.2, 1.1, 0.5}};
+    memset(c, 0, sizeof *c);
+    c->ns = ns;
+    c->nm = nm;
+    c->fx.finite_def = finite;
+    if (nm == 3) memcpy(c->Xm, T3, sizeof T3);
+    else test_sphere_facet(1.0, 0.8, c->Xm);
+    for (int a = 0; a < 6; a++)
+        for (int i = 0; i < 3; i++) c->Xm[a][i] += test_rand(s, -0.03, 0.03);
+    ffc_point g;
+    const double xm[2] = {test_rand(s, 0.25, 0.4), test_rand(s, 0.25, 0.4)};
+    ffc_facet_point(nm, (const double(*)[3])c->Xm, xm, &g);
+    c->xs[0] = test_rand(s, 0.15, 0.45);
+    c->xs[1] = test_rand(s, 0.15, 0.4);
+    double N[6];
+    ffc_shape(ns, c->xs, N, NULL);
+    /* slave nodes: a reversed small facet whose point xs sits at x(xm) + offset n */
+    for (int a = 0; a < ns; a++)
+        for (int i = 0; i < 3; i++) {
+            c->Xs[a][i] = g.x[i] + offset * g.n[i] + 0.4 * (test_node_xi[a][1] - c->xs[1]) * g.tau[0][i] +
+                          0.4 * (test_node_xi[a][0] - c->xs[0]) * g.tau[1][i] + test_rand(s, -0.02, 0.02);
+            c->Xs0[a][i] = c->Xs[a][i] + test_rand(s, -0.05, 0.05);
+        }
+    c->w = 0.5;
+    c->eps = 50.0;
+}
+
+/* Central differences with h = 1e-6 on unit-size facets: truncation
+ * h^2 |R'''| ~ 1e-12 relative, round-off eps |R| / h ~ 1e-10: the 1e-6
+ * bound keeps four orders of margin. */
+static double fd_check(lcase *c)
+{
+    const double h = 1e-6;
+    ffc_link_state st;
+    double R[FFC_MAXDOF], K[FFC_MAXDOF][FFC_MAXDOF];
+    assert_int_equal(lc_eval(c, &st, R, K), FFC_OK);
+    const int nd = 3 * (c->ns + c->nm);
+    double err = 0, scale = 0;
+    for (int l = 0; l < nd; l++) {
+        double *x = lc_coord(c, l), x0 = *x, Rp[FFC_MAXDOF], Rm[FFC_MAXDOF];
+        ffc_link_state sp, sm;
+        /* with small strain the reference slave area does not move */
+        *x = x0 + h; assert_int_equal(lc_eval(c, &sp, Rp, NULL), FFC_OK);
+        *x = x0 - h; assert_int_equal(lc_eval(c, &sm, Rm, NULL), FFC_OK);
+        *x = x0;
+        assert_int_equal(sp.active, st.active);
+        assert_int_equal(sm.active, st.active);
+        for (int k = 0; k < nd; k++) {
+            err = fmax(err, fabs((Rp[k] - Rm[k]) / (2 * h) - K[k][l]));
+            scale = fmax(scale, fabs(K[k][l]));
+        }
+    }
+    if (!st.active) {
+        assert_true(scale == 0.0 && err == 0.0);
+        return 0.0;
+    }
+    if (!(err <= 1e-6 * scale)) fail_msg("tangent error %.3g of scale %.3g (ns %d nm %d finite %d)", err, scale, c->ns, c->nm, c->fx.finite_def);
+    return scale;
+}
+
+static void test_tangent_contact(void **state)
+{
+    (void)state;
+    uint64_t s = 5;
+    for (int finite = 0; finite <= 1; finite++)
+        for (int ns = 3; ns <= 6; ns += 3)
+            for (int nm = 3; nm <= 6; nm += 3)
+                for (int trial = 0; trial < 4; trial++) {
+                    lcase c;
+                    /* penetrating (gap < 0) or open with a multiplier that
+                     * keeps the link active: lambda - eps g > 0 with margin */
+                    double off = test_rand(&s, -0.05, 0.05);
+                    lc_make(&c, ns, nm, finite, off, &s);
+                    c.lambda = off > 0 ? c.eps * off + test_rand(&s, 0.5, 3) : test_rand(&s, 0, 2);
+                    assert_true(fd_check(&c) > 0);
+                }
+}
+
+static void test_separated(void **state)
+{
+    (void)state;
+    uint64_t s = 6;
+    lcase c;
+    lc_make(&c, 3, 6, 1, 0.05, &s);
+    c.lambda = 0.5; /* lambda - eps g = 0.5 - 2.5 < 0 */
+    ffc_link_state st;
+    double R[FFC_MAXDOF], K[FFC_MAXDOF][FFC_MAXDOF];
+    assert_int_equal(lc_eval(&c, &st, R, K), FFC_OK);
+    assert_int_equal(st.active, 0);
+    assert_close(st.tn, 0.0, 0.0);
+    assert_close(st.gap, 0.05, 0.02);
+    for (int k = 0; k < 27; k++) {
+        assert_close(R[k], 0.0, 0.0);
+        for (int l = 0; l < 27; l++) assert_close(K[k][l], 0.0, 0.0);
+    }
+    fd_check(&c);
+}
+
+/* small strain: R is the gradient of the potential
+ * Pi = da / (2 eps) (<lambda - eps g>^2 - lambda^2), and K is symmetric */
+static void test_potential_and_symmetry(void **state)
+{
+    (void)state;
+    uint64_t s = 7;
+    for (int nm = 3; nm <= 6; nm += 3) {
+        lcase c;
+        lc_make(&c, 3, nm, 0, -0.02, &s);
+        c.lambda = 1.0;
+        ffc_link_state st;
+        double R[FFC_MAXDOF], K[FFC_MAXDOF][FFC_MAXDOF];
+        assert_int_equal(lc_eval(&c, &st, R, K), FFC_OK);
+        const int nd = 3 * (3 + nm);
+        const double h = 1e-6;
+        double err = 0, scale = 0;
+        for (int l = 0; l < nd; l++) {
+            double *x = lc_coord(&c, l), x0 = *x, Rd[FFC_MAXDOF], pi[2];
+            for (int sgn = 0; sgn < 2; sgn++) {
+                ffc_link_state t;
+                *x = x0 + (sgn ? -h : h);
+                lc_eval(&c, &t, Rd, NULL);
+                double tr = c.lambda - c.eps * t.gap, pos = tr > 0 ? tr : 0;
+                pi[sgn] = t.da / (2 * c.eps) * (pos * pos - c.lambda * c.lambda);
+            }
+            *x = x0;
+            err = fmax(err, fabs((pi[0] - pi[1]) / (2 * h) - R[l]));
+            scale = fmax(scale, fabs(R[l]));
+            for (int k = 0; k < nd; k++) assert_close(K[k][l], K[l][k], 1e-10 * (1 + fabs(K[k][l])));
+        }
+        assert_true(err <= 1e-6 * scale);
+    }
+}
+
+/* a flat master: the slave point at height -d feels pressure eps d */
+static void test_flat_values(void **state)
+{
+    (void)state;
+    lcase c;
+    memset(&c, 0, sizeof c);
+    c.ns = c.nm = 3;
+    const double M[3][3] = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}};
+    memcpy(c.Xm, M, sizeof M);
+    const double S[3][3] = {{0.2, 0.2, -0.01}, {0.2, 0.8, -0.01}, {0.8, 0.2, -0.01}};
+    memcpy(c.Xs, S, sizeof S);
+    memcpy(c.Xs0, S, sizeof S);
+    c.xs[0] = c.xs[1] = 1.0 / 3.0;
+    c.w = 0.5;
+    c.eps = 100;
+    c.lambda = 2;
+    ffc_link_state st;
+    double R[FFC_MAXDOF];
+    assert_int_equal(lc_eval(&c, &st, R, NULL), FFC_OK);
+    assert_close(st.gap, -0.01, 1e-15);
+    assert_close(st.tn, 3.0, 1e-13);      /* 2 + 100 * 0.01 */
+    assert_close(st.da, 0.5 * 0.36, 1e-15); /* w * 2 * area 0.18 */
+    /* total force on the slave nodes = +tn da along +z, on the master -tn da */
+    double fs = 0, fm = 0;
+    for (int a = 0; a < 3; a++) { fs -= R[3 * a + 2]; fm -= R[9 + 3 * a + 2]; }
+    assert_close(fs, 3.0 * 0.18, 1e-14);
+    assert_close(fm, -3.0 * 0.18, 1e-14);
+    c.eps = -1;
+    assert_int_equal(lc_eval(&c, &st, R, NULL), FFC_ERR_VALUE);
+    c.eps = 1;
+    c.lambda = NAN;
+    assert_int_equal(lc_eval(&c, &st, R, NULL), FFC_ERR_VALUE);
+}
+
+/* assembly and augmentation over a small pair: two flat squares */
+static void test_assemble_augment(void **state)
+{
+    (void)state;
+    /* master: square [0,1]^2 at z = 0 (nodes 0..3), slave: the same square
+     * at z = -0.01, reversed (nodes 4..7) */
+    double X[8 * 3] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    double u[8 * 3] = {0};
+    for (int v = 4; v < 8; v++) u[3 * v + 2] = -0.01;
+    const long Fm[6] = {0, 1, 2, 0, 2, 3}, Fs[6] = {4, 6, 5, 4, 7, 6};
+    ffc_pair P = {3, 2, Fs, 3, 2, Fm, 8, X, u};
+    ffc_effects fx = {0, 0, 0};
+    double xs[8 * 3];
+    for (int i = 0; i < 24; i++) xs[i] = X[i] + u[i];
+    ffc_tree *t;
+    assert_int_equal(ffc_tree_build(3, 2, Fm, 8, xs, &t), FFC_OK);
+    ffc_link L[6];
+    ffc_search_opts o = ffc_search_defaults();
+    assert_int_equal(ffc_search(t, 3, 2, Fs, 8, xs, 2, &o, 6, L), 6);
+    ffc_tree_free(t);
+    double lam[6] = {0}, R[24] = {0};
+    long Ti[2000], Tj[2000], nt, bad;
+    double Tv[2000];
+    ffc_stats st;
+    /* too small a buffer: the count needed is returned */
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, 100, R, 10, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_CAPACITY);
+    assert_int_equal(nt, 6 * 18 * 18);
+    memset(R, 0, sizeof R);
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, 100, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
+    assert_int_equal(st.active, 6);
+    assert_close(st.max_pen, 0.01, 1e-14);
+    assert_close(st.force[2], 100 * 0.01 * 1.0, 1e-12); /* pressure 1 on area 1 */
+    double fz = 0;
+    for (int v = 4; v < 8; v++) fz -= R[3 * v + 2];
+    assert_close(fz, 1.0, 1e-12);
+    /* augmentation: lambda = eps * 0.01 = 1 everywhere */
+    assert_int_equal(ffc_augment(&fx, &P, 2, 6, L, lam, 100, &st, &bad), FFC_OK);
+    for (int k = 0; k < 6; k++) assert_close(lam[k], 1.0, 1e-12);
+    assert_close(st.max_dlam, 1.0, 1e-12);
+    double Pt[6 * FFC_POINT_COLS];
+    assert_int_equal(ffc_points(&fx, &P, 2, 6, L, lam, 100, Pt, &bad), FFC_OK);
+    for (int k = 0; k < 6; k++) {
+        assert_close(Pt[k * FFC_POINT_COLS + 2], -0.01, 1e-15);
+        assert_close(Pt[k * FFC_POINT_COLS + 4], 2.0, 1e-12);
+    }
+    /* bad input: wrong link count, NaN multiplier, non-positive penalty */
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 5, L, lam, 100, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_SIZE);
+    lam[3] = NAN;
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, 100, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_NONFINITE);
+    assert_int_equal(bad, 3);
+    lam[3] = 0;
+    assert_int_equal(ffc_augment(&fx, &P, 2, 6, L, lam, 0, &st, &bad), FFC_ERR_VALUE);
+    /* open pair: no contact term at all */
+    for (int v = 4; v < 8; v++) u[3 * v + 2] = 0.2;
+    memset(lam, 0, sizeof lam);
+    memset(R, 0, sizeof R);
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, 100, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
+    assert_int_equal(nt, 0);
+    assert_int_equal(st.active, 0);
+    for (int i = 0; i < 24; i++) assert_close(R[i], 0.0, 0.0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_tangent_contact),
+        cmocka_unit_test(test_separated),
+        cmocka_unit_test(test_potential_and_symmetry),
+        cmocka_unit_test(test_flat_values),
+        cmocka_unit_test(test_assemble_augment),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
