@@ -287,38 +287,60 @@ typedef struct {
     const double *u;   /* [nv*3] displacements (length) */
 } ffc_pair;
 
+/* The normal contact law and where its multipliers live. */
+typedef struct {
+    double eps_n;      /* penalty (force/length^3), > 0 */
+    int nodal;         /* 1: one multiplier per slave node, lambda[nv]; the
+                          pressure at a point uses the interpolated
+                          multiplier, and the Uzawa update drives the
+                          weighted nodal gap  int N_a g dA / int N_a dA  to
+                          zero (one constraint per node: well posed).
+                          0: one multiplier per slave quadrature point,
+                          lambda[nl], updated pointwise as in the seed (more
+                          constraints than contact unknowns: the multipliers
+                          may drift and Uzawa may stall) */
+} ffc_law;
+
 /* Summary of an assembly or augmentation. */
 typedef struct {
     long linked;       /* links with a master partner */
     long active;       /* links with t_N > 0 */
     double max_pen;    /* largest penetration max(0, -g) over linked points (length) */
+    double max_pen_node; /* largest weighted nodal penetration (nodal law, augmentation) */
     double max_dlam;   /* largest |lambda_new - lambda| (augmentation only) */
     double max_tn;     /* largest contact pressure */
     double force[3];   /* total contact force on the slave side (force) */
 } ffc_stats;
 
 /* Adds the contact residual of all links into R[3nv] and writes the
- * tangent as triplets (Ti, Tj, Tv)[cap] (NULL: residual only).  lambda[nl]
- * per link.  *ntrip is the number of triplets written, or the number
+ * tangent as triplets (Ti, Tj, Tv)[cap] (NULL: residual only).  lambda:
+ * [nv] per node or [nl] per link, as law->nodal says.  *ntrip is the number of triplets written, or the number
  * needed when FFC_ERR_CAPACITY is returned (R is then incomplete).
  * On error *bad is the link at fault. */
 int ffc_assemble(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
                  long nl, const ffc_link links[], const double lambda[],
-                 double eps, double R[], long cap, long Ti[], long Tj[],
+                 const ffc_law *law, double R[], long cap, long Ti[], long Tj[],
                  double Tv[], long *ntrip, ffc_stats *stats, long *bad);
 
-/* Uzawa update lambda <- <lambda - eps g> for every link (0 without a
- * partner); stats->max_dlam measures the change. */
+/* Uzawa update: pointwise lambda_q <- <lambda_q - eps g_q> (0 without a
+ * partner), or nodal lambda_a <- <lambda_a - eps g_a> with the weighted
+ * gap g_a = sum_q N_a da g / sum_q N_a da over linked points (0 at nodes
+ * without linked points); stats->max_dlam measures the change. */
 int ffc_augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
-                long nl, const ffc_link links[], double lambda[], double eps,
-                ffc_stats *stats, long *bad);
+                long nl, const ffc_link links[], double lambda[],
+                const ffc_law *law, ffc_stats *stats, long *bad);
 
 /* Per-link output P[nl*FFC_POINT_COLS]: x, y, z (current slave point),
  * gap, t_N, active, area da, master facet. */
 #define FFC_POINT_COLS 8
 int ffc_points(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
                long nl, const ffc_link links[], const double lambda[],
-               double eps, double P[], long *bad);
+               const ffc_law *law, double P[], long *bad);
+
+/* Writes the rows of ffc_points (n points) as a legacy-VTK point cloud
+ * with scalar fields gap, pressure, active; FFC_ERR_VALUE if the file
+ * cannot be written. */
+int ffc_points_vtk(const char *path, long n, const double P[]);
 
 #ifdef __cplusplus
 }

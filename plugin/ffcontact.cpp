@@ -22,6 +22,8 @@ struct MeshArrays {
     std::vector<long> beopp;   // [nbe] vertex of the adjacent tet opposite the face
 };
 
+const long CP_HEAD = 4; // header entries of a contact pair descriptor
+
 void mesh_arrays(const Mesh3 &Th, MeshArrays &m)
 {
     m.nv = Th.nv;
@@ -139,15 +141,13 @@ void check_surface(const char *fn, const char *arg, long nf, const long *F,
     fail(fn, s.str());
 }
 
-// ffcSurface(Th, labs, F): boundary facets of Th whose label is in labs,
-// oriented outward, as 3 global vertex indices each, into F; returns their count.
-long ffcSurface(pmesh3 const &pTh, KN<long> *const &labs, KN<long> *const &F)
+// The boundary facets of Th whose label is in labs (argument `arg`),
+// oriented outward, into F; returns their count.
+long select_surface(const char *fn, const char *arg, const Mesh3 &Th, KN<long> *labs, KN<long> *F)
 {
-    const char *fn = "ffcSurface";
-    const Mesh3 &Th = need_mesh(fn, pTh);
-    if (!labs) fail(fn, "argument 'labs': array is not defined");
-    if (!F) fail(fn, "argument 'F': array is not defined");
-    if (labs->N() == 0) fail(fn, "argument 'labs': empty list of labels");
+    const std::string a = std::string("argument '") + arg + "': ";
+    if (!labs) fail(fn, a + "array is not defined");
+    if (labs->N() == 0) fail(fn, a + "empty list of labels");
     MeshArrays m;
     mesh_arrays(Th, m);
     if (m.nbe == 0) fail(fn, "argument 'Th': the mesh has no boundary faces");
@@ -160,8 +160,7 @@ long ffcSurface(pmesh3 const &pTh, KN<long> *const &labs, KN<long> *const &F)
     if (st < 0) {
         std::ostringstream s;
         if (st == FFC_ERR_LABEL)
-            s << "argument 'labs': no boundary face carries label " << bad
-              << "; labels present: " << labels_present(m);
+            s << a << "no boundary face carries label " << bad << "; labels present: " << labels_present(m);
         else if (st == FFC_ERR_DEGENERATE)
             s << "boundary face " << bad << " is degenerate: zero area";
         else
@@ -171,6 +170,42 @@ long ffcSurface(pmesh3 const &pTh, KN<long> *const &labs, KN<long> *const &F)
     F->resize(3 * (long)st);
     for (long i = 0; i < 3 * (long)st; i++) (*F)[i] = out[i];
     return st;
+}
+
+// ffcSurface(Th, labs, F): boundary facets of Th whose label is in labs,
+// oriented outward, as 3 global vertex indices each, into F; returns their count.
+long ffcSurface(pmesh3 const &pTh, KN<long> *const &labs, KN<long> *const &F)
+{
+    const char *fn = "ffcSurface";
+    const Mesh3 &Th = need_mesh(fn, pTh);
+    if (!F) fail(fn, "argument 'F': array is not defined");
+    return select_surface(fn, "labs", Th, labs, F);
+}
+
+// ffcPair(Th, slaveLabs, masterLabs, CP): the contact pair descriptor
+// [3, nfs, 3, nfm, slave facets, master facets]; returns nfs.
+long ffcPair(pmesh3 const &pTh, KN<long> *const &sl, KN<long> *const &ml, KN<long> *const &CP)
+{
+    const char *fn = "ffcPair";
+    if (!CP) fail(fn, "argument 'CP': array is not defined");
+    KN<long> Fs(1), Fm(1);
+    const Mesh3 &Th = need_mesh(fn, pTh);
+    if (!sl || sl->N() == 0) fail(fn, "argument 'slaveLabs': empty list of labels");
+    if (!ml || ml->N() == 0) fail(fn, "argument 'masterLabs': empty list of labels");
+    for (long i = 0; i < sl->N(); i++)
+        for (long j = 0; j < ml->N(); j++)
+            if ((*sl)[i] == (*ml)[j]) {
+                std::ostringstream s;
+                s << "label " << (*sl)[i] << " is in both 'slaveLabs' and 'masterLabs'";
+                fail(fn, s.str());
+            }
+    long nfs = select_surface(fn, "slaveLabs", Th, sl, &Fs);
+    long nfm = select_surface(fn, "masterLabs", Th, ml, &Fm);
+    CP->resize(CP_HEAD + 3 * nfs + 3 * nfm);
+    (*CP)[0] = 3; (*CP)[1] = nfs; (*CP)[2] = 3; (*CP)[3] = nfm;
+    for (long i = 0; i < 3 * nfs; i++) (*CP)[CP_HEAD + i] = Fs[i];
+    for (long i = 0; i < 3 * nfm; i++) (*CP)[CP_HEAD + 3 * nfs + i] = Fm[i];
+    return nfs;
 }
 
 // ffcArea(Th, F, u): area of the surface F in the configuration X + u.
@@ -213,6 +248,38 @@ long ffcNormals(pmesh3 const &pTh, KN<long> *const &F, KN<double> *const &u,
     return nf;
 }
 
+// A contact pair descriptor CP (int[int]): [ns, nfs, nm, nfm, Fs (ns*nfs), Fm (nm*nfm)]
+// (CP_HEAD entries of header, defined at the top).
+struct PairView {
+    long ns, nfs, nm, nfm;
+    const long *Fs, *Fm;
+};
+
+PairView need_pair(const char *fn, KN<long> *CP, long nv)
+{
+    if (!CP) fail(fn, "argument 'CP': array is not defined");
+    const long n = CP->N();
+    if (n < CP_HEAD) fail(fn, "argument 'CP': not a contact pair (make it with ffcPair)");
+    PairView p;
+    p.ns = (*CP)[0]; p.nfs = (*CP)[1]; p.nm = (*CP)[2]; p.nfm = (*CP)[3];
+    if (p.ns != 3 || p.nm != 3 || p.nfs <= 0 || p.nfm <= 0 ||
+        n != CP_HEAD + p.ns * p.nfs + p.nm * p.nfm) {
+        std::ostringstream s;
+        s << "argument 'CP': header [" << p.ns << ", " << p.nfs << ", " << p.nm << ", " << p.nfm
+          << "] and size " << n << " do not describe a contact pair (make it with ffcPair)";
+        fail(fn, s.str());
+    }
+    p.Fs = &(*CP)[CP_HEAD];
+    p.Fm = p.Fs + p.ns * p.nfs;
+    for (long i = CP_HEAD; i < n; i++)
+        if ((*CP)[i] < 0 || (*CP)[i] >= nv) {
+            std::ostringstream s;
+            s << "argument 'CP': entry " << i << " = " << (*CP)[i] << " is not a vertex of the mesh";
+            fail(fn, s.str());
+        }
+    return p;
+}
+
 // current positions x = X + u of all vertices
 std::vector<double> current_positions(const MeshArrays &m, const double *u)
 {
@@ -225,13 +292,12 @@ std::vector<double> current_positions(const MeshArrays &m, const double *u)
 const long L_SF = 0, L_Q = 1, L_XS1 = 2, L_XS2 = 3, L_MF = 4, L_XM1 = 5, L_XM2 = 6, L_GAP = 7,
            L_NX = 8, L_NY = 9, L_NZ = 10, L_WHERE = 11, L_COLS = 12;
 
-// ffcSearch(Th, u, Fs, Fm, qdeg, crel, cabs, L): links of every quadrature
-// point of the slave facets Fs to the master facets Fm in the configuration
-// X + u; one row of L per slave point (facet-major); returns the number of
-// points with a partner.
-long ffcSearch(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &Fs,
-               KN<long> *const &Fm, long const &qdeg, double const &crel,
-               double const &cabs, KNM<double> *const &L)
+// ffcSearch(Th, u, CP, qdeg, crel, cabs, L): links of every quadrature
+// point of the slave facets to the master facets of the pair CP in the
+// configuration X + u; one row of L per slave point (facet-major);
+// returns the number of points with a partner.
+long ffcSearch(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
+               long const &qdeg, double const &crel, double const &cabs, KNM<double> *const &L)
 {
     const char *fn = "ffcSearch";
     const Mesh3 &Th = need_mesh(fn, pTh);
@@ -246,20 +312,20 @@ long ffcSearch(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &Fs,
     MeshArrays m;
     mesh_arrays(Th, m);
     const double *pu = need_disp(fn, u, m.nv);
-    long nfs = need_facets(fn, "Fs", Fs, m.nv);
-    long nfm = need_facets(fn, "Fm", Fm, m.nv);
-    check_surface(fn, "Fs", nfs, &(*Fs)[0], m, pu);
-    check_surface(fn, "Fm", nfm, &(*Fm)[0], m, pu);
+    PairView P = need_pair(fn, CP, m.nv);
+    const long nfs = P.nfs, nfm = P.nfm;
+    check_surface(fn, "CP (slave facets)", nfs, P.Fs, m, pu);
+    check_surface(fn, "CP (master facets)", nfm, P.Fm, m, pu);
     std::vector<double> x = current_positions(m, pu);
     ffc_tree *t = nullptr;
-    int st = ffc_tree_build(3, nfm, &(*Fm)[0], m.nv, x.data(), &t);
+    int st = ffc_tree_build(3, nfm, P.Fm, m.nv, x.data(), &t);
     if (st) fail(fn, std::string("master surface: ") + ffc_strerror(st));
     const long nq = ffc_quad_size((int)qdeg), nl = nfs * nq;
     std::vector<ffc_link> links(nl);
     ffc_search_opts o = ffc_search_defaults();
     o.capture_rel = crel;
     o.capture_abs = cabs;
-    st = ffc_search(t, 3, nfs, &(*Fs)[0], m.nv, x.data(), (int)qdeg, &o, nl, links.data());
+    st = ffc_search(t, 3, nfs, P.Fs, m.nv, x.data(), (int)qdeg, &o, nl, links.data());
     ffc_tree_free(t);
     if (st < 0) fail(fn, ffc_strerror(st));
     L->resize(nl, L_COLS);
@@ -273,6 +339,293 @@ long ffcSearch(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &Fs,
     return st;
 }
 
+// quadrature degree whose rule has nq points (degrees 3 and 4 share one)
+int degree_of(long nq)
+{
+    switch (nq) {
+    case 1: return 1;
+    case 3: return 2;
+    case 6: return 4;
+    case 7: return 5;
+    case 12: return 6;
+    default: return -1;
+    }
+}
+
+// Effects bit mask of the script: 1 friction, 2 dynamic, 4 finite deformation.
+ffc_effects need_effects(const char *fn, long bits)
+{
+    if (bits < 0 || bits > 7) {
+        std::ostringstream s;
+        s << "argument 'effects': " << bits << " is not a set of effects (bits: 1 friction, 2 dynamic, 4 finite deformation)";
+        fail(fn, s.str());
+    }
+    if (bits & 1) fail(fn, "argument 'effects': friction (bit 1) is not available in this version");
+    if (bits & 2) fail(fn, "argument 'effects': dynamic contact (bit 2) is not available in this version");
+    ffc_effects e = {0, 0, (bits & 4) ? 1 : 0};
+    return e;
+}
+
+// Everything a link-level call needs, checked.
+struct LinkCall {
+    MeshArrays m;
+    const double *u = nullptr;
+    long nfs = 0, nfm = 0, nl = 0;
+    int qdeg = 0;
+    std::vector<ffc_link> links;
+    ffc_pair pair;
+};
+
+// Options opt (real[int]): [eps_N (> 0, force/length^3), effects bits,
+// multipliers (1: at slave nodes, lambda[nv], default; 0: at slave
+// quadrature points, lambda[nlinks])].
+struct Options {
+    double eps;
+    ffc_effects fx;
+    ffc_law law;
+};
+
+Options need_options(const char *fn, KN<double> *opt)
+{
+    if (!opt) fail(fn, "argument 'opt': array is not defined");
+    if (opt->N() < 2) {
+        std::ostringstream s;
+        s << "argument 'opt': size " << opt->N() << ", expected [epsN, effects]";
+        fail(fn, s.str());
+    }
+    Options o;
+    o.eps = (*opt)[0];
+    if (!(o.eps > 0) || std::isinf(o.eps))
+        fail(fn, "argument 'opt': penalty epsN = opt[0] = " + num(o.eps) + " must be finite and > 0");
+    double b = (*opt)[1];
+    if (!(b == std::floor(b))) fail(fn, "argument 'opt': effects = opt[1] = " + num(b) + " is not a set of bits");
+    o.fx = need_effects(fn, (long)b);
+    o.law.eps_n = o.eps;
+    o.law.nodal = 1;
+    if (opt->N() >= 3) {
+        double m = (*opt)[2];
+        if (m != 0 && m != 1)
+            fail(fn, "argument 'opt': multipliers = opt[2] = " + num(m) + " must be 1 (slave nodes) or 0 (quadrature points)");
+        o.law.nodal = (int)m;
+    }
+    return o;
+}
+
+void need_links(const char *fn, pmesh3 pTh, KN<double> *u, KN<long> *CP,
+                KNM<double> *L, KN<double> *lam, const Options &o, LinkCall &c)
+{
+    const Mesh3 &Th = need_mesh(fn, pTh);
+    mesh_arrays(Th, c.m);
+    c.u = need_disp(fn, u, c.m.nv);
+    PairView P = need_pair(fn, CP, c.m.nv);
+    c.nfs = P.nfs;
+    c.nfm = P.nfm;
+    if (!L) fail(fn, "argument 'L': array is not defined");
+    if (L->M() != L_COLS) {
+        std::ostringstream s;
+        s << "argument 'L': " << L->M() << " columns, expected " << L_COLS << " (links from ffcSearch)";
+        fail(fn, s.str());
+    }
+    c.nl = L->N();
+    if (c.nl % c.nfs || degree_of(c.nl / c.nfs) < 0) {
+        std::ostringstream s;
+        s << "argument 'L': " << c.nl << " rows do not match the " << c.nfs
+          << " slave facets of 'CP' (expected nfs * points per facet, from ffcSearch)";
+        fail(fn, s.str());
+    }
+    c.qdeg = degree_of(c.nl / c.nfs);
+    if (!lam) fail(fn, "argument 'lambda': array is not defined");
+    const long nlam = o.law.nodal ? c.m.nv : c.nl;
+    if (lam->N() != nlam) {
+        std::ostringstream s;
+        s << "argument 'lambda': size " << lam->N() << ", expected "
+          << (o.law.nodal ? "one multiplier per mesh vertex (nodal multipliers): " : "one multiplier per link: ") << nlam;
+        fail(fn, s.str());
+    }
+    for (long k = 0; k < nlam; k++)
+        if (!std::isfinite((*lam)[k])) {
+            std::ostringstream s;
+            s << "argument 'lambda': lambda[" << k << "] = " << num((*lam)[k]) << " is not finite";
+            fail(fn, s.str());
+        }
+    const KNM<double> &A = *L;
+    c.links.resize(c.nl);
+    const long nq = c.nl / c.nfs;
+    for (long k = 0; k < c.nl; k++) {
+        ffc_link &l = c.links[k];
+        l.sf = (long)A(k, L_SF); l.q = (int)A(k, L_Q); l.xs[0] = A(k, L_XS1); l.xs[1] = A(k, L_XS2);
+        l.mf = (long)A(k, L_MF); l.xm[0] = A(k, L_XM1); l.xm[1] = A(k, L_XM2); l.gap = A(k, L_GAP);
+        l.n[0] = A(k, L_NX); l.n[1] = A(k, L_NY); l.n[2] = A(k, L_NZ); l.where = (int)A(k, L_WHERE);
+        if (l.sf != k / nq || l.q != k % nq || l.mf < -1 || l.mf >= c.nfm) {
+            std::ostringstream s;
+            s << "argument 'L': row " << k << " (slave facet " << A(k, L_SF) << ", point " << A(k, L_Q)
+              << ", master facet " << A(k, L_MF) << ") is not a link of these surfaces";
+            fail(fn, s.str());
+        }
+    }
+    check_surface(fn, "CP (slave facets)", c.nfs, P.Fs, c.m, c.u);
+    check_surface(fn, "CP (master facets)", c.nfm, P.Fm, c.m, c.u);
+    c.pair.ns = 3; c.pair.nfs = c.nfs; c.pair.Fs = P.Fs;
+    c.pair.nm = 3; c.pair.nfm = c.nfm; c.pair.Fm = P.Fm;
+    c.pair.nv = c.m.nv; c.pair.X = c.m.X.data(); c.pair.u = c.u;
+}
+
+void link_error(const char *fn, int st, long bad)
+{
+    std::ostringstream s;
+    s << ffc_strerror(st);
+    if (bad >= 0) s << " (link " << bad << ")";
+    if (st == FFC_ERR_DEGENERATE) s << ": an inverted or collapsed facet; did Newton diverge?";
+    fail(fn, s.str());
+}
+
+// ffcAssemble(Th, u, CP, L, lambda, opt, R, K): adds the contact residual
+// into R (size 3 nv) and sets K to the contact tangent; returns the number
+// of active links.
+long ffcAssemble(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
+                 KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
+                 KN<double> *const &R, Matrice_Creuse<double> *const &K)
+{
+    const char *fn = "ffcAssemble";
+    Options o = need_options(fn, opt);
+    const ffc_effects fx = o.fx;
+    LinkCall c;
+    need_links(fn, pTh, u, CP, L, lam, o, c);
+    const long n = 3 * c.m.nv;
+    if (!R) fail(fn, "argument 'R': array is not defined");
+    if (R->N() != n) {
+        std::ostringstream s;
+        s << "argument 'R': size " << R->N() << ", expected 3*nv = " << n;
+        fail(fn, s.str());
+    }
+    if (!K) fail(fn, "argument 'K': matrix is not defined");
+    // triplet buffer: first guess from the links that look active, grown once if needed
+    const long nd2 = 18 * 18;
+    long guess = 0;
+    for (long k = 0; k < c.nl; k++)
+        if (c.links[k].mf >= 0 && (c.links[k].gap < 0 || (o.law.nodal ? true : (*lam)[k] > 0))) guess++;
+    long cap = (guess + 16) * nd2, nt = 0, bad = -1;
+    std::vector<long> Ti, Tj;
+    std::vector<double> Tv, Rc(n, 0.0);
+    ffc_stats st;
+    int rc;
+    for (int attempt = 0; attempt < 2; attempt++) {
+        Ti.resize(cap); Tj.resize(cap); Tv.resize(cap);
+        std::fill(Rc.begin(), Rc.end(), 0.0);
+        rc = ffc_assemble(&fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], &o.law, Rc.data(),
+                          cap, Ti.data(), Tj.data(), Tv.data(), &nt, &st, &bad);
+        if (rc != FFC_ERR_CAPACITY) break;
+        cap = nt;
+    }
+    if (rc) link_error(fn, rc, bad);
+    for (long i = 0; i < n; i++) (*R)[i] += Rc[i];
+    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, (int)std::min(nt, 1L << 30), 0);
+    for (long t = 0; t < nt; t++) (*h)((int)Ti[t], (int)Tj[t]) += Tv[t];
+    K->A.master(h);
+    K->typemat = 0;
+    return st.active;
+}
+
+// ffcResidual(Th, u, CP, L, lambda, opt, R): adds the contact residual
+// into R (size 3 nv), no tangent; returns the number of active links.
+long ffcResidual(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
+                 KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
+                 KN<double> *const &R)
+{
+    const char *fn = "ffcResidual";
+    Options o = need_options(fn, opt);
+    LinkCall c;
+    need_links(fn, pTh, u, CP, L, lam, o, c);
+    const long n = 3 * c.m.nv;
+    if (!R) fail(fn, "argument 'R': array is not defined");
+    if (R->N() != n) {
+        std::ostringstream s;
+        s << "argument 'R': size " << R->N() << ", expected 3*nv = " << n;
+        fail(fn, s.str());
+    }
+    std::vector<double> Rc(n, 0.0);
+    ffc_stats st;
+    long nt = 0, bad = -1;
+    int rc = ffc_assemble(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], &o.law, Rc.data(),
+                          0, nullptr, nullptr, nullptr, &nt, &st, &bad);
+    if (rc) link_error(fn, rc, bad);
+    for (long i = 0; i < n; i++) (*R)[i] += Rc[i];
+    return st.active;
+}
+
+void stats_out(const ffc_stats &st, KN<double> *S)
+{
+    S->resize(9);
+    (*S)[0] = st.linked; (*S)[1] = st.active; (*S)[2] = st.max_pen; (*S)[3] = st.max_dlam;
+    (*S)[4] = st.max_tn; (*S)[5] = st.force[0]; (*S)[6] = st.force[1]; (*S)[7] = st.force[2];
+    (*S)[8] = st.max_pen_node;
+}
+
+// ffcAugment(Th, u, CP, L, lambda, opt, S): Uzawa update
+// lambda <- <lambda - eps g>; S = [linked, active, max penetration,
+// max |change of lambda|, max pressure, Fx, Fy, Fz, max weighted nodal
+// penetration]; returns active links.
+long ffcAugment(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
+                KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
+                KN<double> *const &S)
+{
+    const char *fn = "ffcAugment";
+    Options o = need_options(fn, opt);
+    const ffc_effects fx = o.fx;
+    LinkCall c;
+    need_links(fn, pTh, u, CP, L, lam, o, c);
+    if (!S) fail(fn, "argument 'S': array is not defined");
+    std::vector<double> l(&(*lam)[0], &(*lam)[0] + lam->N());
+    ffc_stats st;
+    long bad = -1;
+    int rc = ffc_augment(&fx, &c.pair, c.qdeg, c.nl, c.links.data(), l.data(), &o.law, &st, &bad);
+    if (rc) link_error(fn, rc, bad);
+    for (long k = 0; k < lam->N(); k++) (*lam)[k] = l[k];
+    stats_out(st, S);
+    return st.active;
+}
+
+// ffcPoints(Th, u, CP, L, lambda, opt, P): one row per link: x, y, z, gap,
+// pressure, active, area, master facet; returns the active links.
+long ffcPoints(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
+               KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
+               KNM<double> *const &P)
+{
+    const char *fn = "ffcPoints";
+    Options o = need_options(fn, opt);
+    const ffc_effects fx = o.fx;
+    LinkCall c;
+    need_links(fn, pTh, u, CP, L, lam, o, c);
+    if (!P) fail(fn, "argument 'P': array is not defined");
+    std::vector<double> out(c.nl * FFC_POINT_COLS);
+    long bad = -1;
+    int rc = ffc_points(&fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], &o.law, out.data(), &bad);
+    if (rc) link_error(fn, rc, bad);
+    P->resize(c.nl, FFC_POINT_COLS);
+    long active = 0;
+    for (long k = 0; k < c.nl; k++) {
+        for (long j = 0; j < FFC_POINT_COLS; j++) (*P)(k, j) = out[k * FFC_POINT_COLS + j];
+        active += out[k * FFC_POINT_COLS + 5] > 0;
+    }
+    return active;
+}
+
+// ffcSaveVTK(file, P): the contact points of ffcPoints as a VTK point cloud
+// with gap, pressure and active fields; returns the number of points.
+long ffcSaveVTK(string *const &file, KNM<double> *const &P)
+{
+    const char *fn = "ffcSaveVTK";
+    if (!file) fail(fn, "argument 'file': no file name");
+    if (!P || P->M() != FFC_POINT_COLS) fail(fn, "argument 'P': expected the point array of ffcPoints");
+    const long n = P->N();
+    std::vector<double> rows(n * FFC_POINT_COLS);
+    for (long k = 0; k < n; k++)
+        for (long j = 0; j < FFC_POINT_COLS; j++) rows[k * FFC_POINT_COLS + j] = (*P)(k, j);
+    int rc = ffc_points_vtk(file->c_str(), n, rows.data());
+    if (rc) fail(fn, "argument 'file': cannot write '" + *file + "': " + ffc_strerror(rc));
+    return n;
+}
+
 } // namespace
 
 static void init()
@@ -281,9 +634,24 @@ static void init()
                new OneOperator3_<long, pmesh3, KN<long> *, KN<long> *>(ffcSurface));
     Global.Add("ffcArea", "(",
                new OneOperator3_<double, pmesh3, KN<long> *, KN<double> *>(ffcArea));
+    Global.Add("ffcPair", "(",
+               new OneOperator4_<long, pmesh3, KN<long> *, KN<long> *, KN<long> *>(ffcPair));
     Global.Add("ffcSearch", "(",
-               new OneOperator8_<long, pmesh3, KN<double> *, KN<long> *, KN<long> *, long, double,
-                                 double, KNM<double> *>(ffcSearch));
+               new OneOperator7_<long, pmesh3, KN<double> *, KN<long> *, long, double, double,
+                                 KNM<double> *>(ffcSearch));
+    Global.Add("ffcAssemble", "(",
+               new OneOperator8_<long, pmesh3, KN<double> *, KN<long> *, KNM<double> *, KN<double> *,
+                                 KN<double> *, KN<double> *, Matrice_Creuse<double> *>(ffcAssemble));
+    Global.Add("ffcResidual", "(",
+               new OneOperator7_<long, pmesh3, KN<double> *, KN<long> *, KNM<double> *, KN<double> *,
+                                 KN<double> *, KN<double> *>(ffcResidual));
+    Global.Add("ffcAugment", "(",
+               new OneOperator7_<long, pmesh3, KN<double> *, KN<long> *, KNM<double> *, KN<double> *,
+                                 KN<double> *, KN<double> *>(ffcAugment));
+    Global.Add("ffcPoints", "(",
+               new OneOperator7_<long, pmesh3, KN<double> *, KN<long> *, KNM<double> *, KN<double> *,
+                                 KN<double> *, KNM<double> *>(ffcPoints));
+    Global.Add("ffcSaveVTK", "(", new OneOperator2_<long, string *, KNM<double> *>(ffcSaveVTK));
     Global.Add("ffcNormals", "(",
                new OneOperator4_<long, pmesh3, KN<long> *, KN<double> *, KN<double> *>(ffcNormals));
 }

@@ -219,11 +219,12 @@ static void test_assemble_augment(void **state)
     long Ti[2000], Tj[2000], nt, bad;
     double Tv[2000];
     ffc_stats st;
+    ffc_law law = {100, 0};
     /* too small a buffer: the count needed is returned */
-    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, 100, R, 10, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_CAPACITY);
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, &law, R, 10, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_CAPACITY);
     assert_int_equal(nt, 6 * 18 * 18);
     memset(R, 0, sizeof R);
-    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, 100, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, &law, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
     assert_int_equal(st.active, 6);
     assert_close(st.max_pen, 0.01, 1e-14);
     assert_close(st.force[2], 100 * 0.01 * 1.0, 1e-12); /* pressure 1 on area 1 */
@@ -231,30 +232,149 @@ static void test_assemble_augment(void **state)
     for (int v = 4; v < 8; v++) fz -= R[3 * v + 2];
     assert_close(fz, 1.0, 1e-12);
     /* augmentation: lambda = eps * 0.01 = 1 everywhere */
-    assert_int_equal(ffc_augment(&fx, &P, 2, 6, L, lam, 100, &st, &bad), FFC_OK);
+    assert_int_equal(ffc_augment(&fx, &P, 2, 6, L, lam, &law, &st, &bad), FFC_OK);
     for (int k = 0; k < 6; k++) assert_close(lam[k], 1.0, 1e-12);
     assert_close(st.max_dlam, 1.0, 1e-12);
     double Pt[6 * FFC_POINT_COLS];
-    assert_int_equal(ffc_points(&fx, &P, 2, 6, L, lam, 100, Pt, &bad), FFC_OK);
+    assert_int_equal(ffc_points(&fx, &P, 2, 6, L, lam, &law, Pt, &bad), FFC_OK);
     for (int k = 0; k < 6; k++) {
         assert_close(Pt[k * FFC_POINT_COLS + 2], -0.01, 1e-15);
         assert_close(Pt[k * FFC_POINT_COLS + 4], 2.0, 1e-12);
     }
     /* bad input: wrong link count, NaN multiplier, non-positive penalty */
-    assert_int_equal(ffc_assemble(&fx, &P, 2, 5, L, lam, 100, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_SIZE);
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 5, L, lam, &law, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_SIZE);
     lam[3] = NAN;
-    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, 100, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_NONFINITE);
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, &law, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_NONFINITE);
     assert_int_equal(bad, 3);
     lam[3] = 0;
-    assert_int_equal(ffc_augment(&fx, &P, 2, 6, L, lam, 0, &st, &bad), FFC_ERR_VALUE);
+    law.eps_n = 0;
+    assert_int_equal(ffc_augment(&fx, &P, 2, 6, L, lam, &law, &st, &bad), FFC_ERR_VALUE);
+    law.eps_n = 100;
+    /* nodal multipliers: the weighted gap of every slave node is -0.01, so
+     * one augmentation gives lambda = 1 at the 4 slave nodes (and 0 at the
+     * master nodes); the pressure is then 1 + 100 * 0.01 = 2 everywhere */
+    ffc_law nod = {100, 1};
+    double lamv[8] = {0};
+    assert_int_equal(ffc_augment(&fx, &P, 2, 6, L, lamv, &nod, &st, &bad), FFC_OK);
+    for (int v = 0; v < 8; v++) assert_close(lamv[v], v >= 4 ? 1.0 : 0.0, 1e-12);
+    assert_close(st.max_pen_node, 0.01, 1e-14);
+    assert_int_equal(ffc_points(&fx, &P, 2, 6, L, lamv, &nod, Pt, &bad), FFC_OK);
+    for (int k = 0; k < 6; k++) assert_close(Pt[k * FFC_POINT_COLS + 4], 2.0, 1e-12);
+    lamv[5] = INFINITY;
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lamv, &nod, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_NONFINITE);
+    assert_int_equal(bad, 5);
     /* open pair: no contact term at all */
     for (int v = 4; v < 8; v++) u[3 * v + 2] = 0.2;
     memset(lam, 0, sizeof lam);
     memset(R, 0, sizeof R);
-    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, 100, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, &law, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
     assert_int_equal(nt, 0);
     assert_int_equal(st.active, 0);
     for (int i = 0; i < 24; i++) assert_close(R[i], 0.0, 0.0);
+}
+
+/* ------------------------------------------- nodal law: assembled tangent */
+/* master: a wavy 4 x 4 grid on [0,1]^2 (nodes 0..24); slave: a reversed
+ * 3 x 3 grid on [0.1,0.9]^2 just below it (nodes 25..40), tilted so that
+ * part of it penetrates and part is open */
+static void nodal_scene(double X[], long Fm[], long Fs[])
+{
+    int v = 0;
+    for (int j = 0; j <= 4; j++)
+        for (int i = 0; i <= 4; i++, v++) {
+            double x = i / 4.0 + (i % 4 ? 0.02 * sin(3.0 * j + i) : 0), y = j / 4.0;
+            X[3 * v] = x; X[3 * v + 1] = y; X[3 * v + 2] = 0.02 * sin(2 * x + 1) * cos(3 * y);
+        }
+    for (int j = 0; j <= 3; j++)
+        for (int i = 0; i <= 3; i++, v++) {
+            double x = 0.1 + 0.8 * i / 3.0, y = 0.1 + 0.8 * j / 3.0;
+            X[3 * v] = x; X[3 * v + 1] = y; X[3 * v + 2] = -0.004 + 0.012 * (x - 0.5) + 0.003 * y;
+        }
+    int f = 0;
+    for (int j = 0; j < 4; j++)
+        for (int i = 0; i < 4; i++) {
+            long a = j * 5 + i, b = a + 1, d = a + 5, c = d + 1;
+            long t[6] = {a, b, d, b, c, d};
+            for (int k = 0; k < 6; k++) Fm[6 * f + k] = t[k];
+            f++;
+        }
+    f = 0;
+    for (int j = 0; j < 3; j++)
+        for (int i = 0; i < 3; i++) {
+            long a = 25 + j * 4 + i, b = a + 1, d = a + 4, c = d + 1;
+            long t[6] = {a, d, b, b, d, c};  /* reversed: normals down */
+            for (int k = 0; k < 6; k++) Fs[6 * f + k] = t[k];
+            f++;
+        }
+}
+
+static void test_nodal_tangent(void **state)
+{
+    (void)state;
+    enum { NV = 41, NFM = 32, NFS = 18 };
+    double X[NV * 3], u[NV * 3], x[NV * 3];
+    long Fm[NFM * 3], Fs[NFS * 3];
+    nodal_scene(X, Fm, Fs);
+    uint64_t s = 17;
+    for (int i = 0; i < NV * 3; i++) u[i] = test_rand(&s, -0.002, 0.002);
+    for (int i = 0; i < NV * 3; i++) x[i] = X[i] + u[i];
+    ffc_tree *t;
+    assert_int_equal(ffc_tree_build(3, NFM, Fm, NV, x, &t), FFC_OK);
+    const int nq = 3;
+    ffc_link L[NFS * nq];
+    ffc_search_opts o = ffc_search_defaults();
+    assert_int_equal(ffc_search(t, 3, NFS, Fs, NV, x, 2, &o, NFS * nq, L), NFS * nq);
+    ffc_tree_free(t);
+    double lam[NV] = {0};
+    for (int v = 25; v < NV; v++) lam[v] = v % 3 ? test_rand(&s, 0.0, 0.5) : 0.0;
+    ffc_law law = {60, 1};
+    ffc_pair P = {3, NFS, Fs, 3, NFM, Fm, NV, X, u};
+    enum { CAP = 200000 };
+    long *Ti = malloc(CAP * sizeof *Ti), *Tj = malloc(CAP * sizeof *Tj), nt, bad;
+    double *Tv = malloc(CAP * sizeof *Tv);
+    static double K[NV * 3][NV * 3];
+    for (int finite = 0; finite <= 1; finite++) {
+        ffc_effects fx = {0, 0, finite};
+        double R[NV * 3] = {0};
+        ffc_stats st;
+        assert_int_equal(ffc_assemble(&fx, &P, 2, NFS * nq, L, lam, &law, R, CAP, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
+        assert_true(st.active > 0 && st.active < NFS * nq); /* part open, part closed */
+        memset(K, 0, sizeof K);
+        for (long k = 0; k < nt; k++) K[Ti[k]][Tj[k]] += Tv[k];
+        /* central differences (h = 1e-7 against displacements ~1e-2:
+         * truncation ~1e-12, round-off ~1e-9 of |R|) */
+        const double h = 1e-7;
+        double err = 0, scale = 0;
+        for (int l = 0; l < NV * 3; l++) {
+            double Rp[NV * 3] = {0}, Rm[NV * 3] = {0}, u0 = u[l];
+            ffc_stats sp, sm;
+            u[l] = u0 + h;
+            assert_int_equal(ffc_assemble(&fx, &P, 2, NFS * nq, L, lam, &law, Rp, 0, NULL, NULL, NULL, &nt, &sp, &bad), FFC_OK);
+            u[l] = u0 - h;
+            assert_int_equal(ffc_assemble(&fx, &P, 2, NFS * nq, L, lam, &law, Rm, 0, NULL, NULL, NULL, &nt, &sm, &bad), FFC_OK);
+            u[l] = u0;
+            assert_int_equal(sp.active, st.active);
+            assert_int_equal(sm.active, st.active);
+            for (int k = 0; k < NV * 3; k++) {
+                err = fmax(err, fabs((Rp[k] - Rm[k]) / (2 * h) - K[k][l]));
+                scale = fmax(scale, fabs(K[k][l]));
+            }
+        }
+        if (!(err <= 1e-6 * scale)) fail_msg("nodal tangent error %.3g of scale %.3g (finite %d)", err, scale, finite);
+    }
+    /* the nodal update: lambda_a <- <lambda_a - eps g~_a>; a second update
+     * at the same displacement changes nothing when g~ = 0 is not reached,
+     * so check instead that active nodes got lambda - eps g~ */
+    ffc_effects fx0 = {0, 0, 0};
+    ffc_stats st;
+    double lam2[NV];
+    memcpy(lam2, lam, sizeof lam);
+    assert_int_equal(ffc_augment(&fx0, &P, 2, NFS * nq, L, lam2, &law, &st, &bad), FFC_OK);
+    int changed = 0;
+    for (int v = 25; v < NV; v++) changed += lam2[v] != lam[v];
+    assert_true(changed > 0);
+    for (int v = 0; v < 25; v++) assert_close(lam2[v], 0.0, 0.0);
+    free(Ti); free(Tj); free(Tv);
 }
 
 int main(void)
@@ -265,6 +385,7 @@ int main(void)
         cmocka_unit_test(test_potential_and_symmetry),
         cmocka_unit_test(test_flat_values),
         cmocka_unit_test(test_assemble_augment),
+        cmocka_unit_test(test_nodal_tangent),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

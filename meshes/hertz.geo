@@ -1,0 +1,49 @@
+// hertz.geo: quarter of an elastic hemisphere (radius 1, centre (0,0,1),
+// flat top z = 1) resting at the origin on a quarter block
+// [0,2] x [0,2] x [-2,0].  Mesh size hc within distance 0.3 of the origin,
+// growing with slope 0.5 up to 0.25.
+//   gmsh -3 -format msh2 -setnumber hc 0.05 hertz.geo
+SetFactory("OpenCASCADE");
+DefineConstant[ hc = 0.05 ];
+Mesh.MshFileVersion = 2.2;
+Mesh.MeshSizeFromPoints = 0;
+Mesh.MeshSizeExtendFromBoundary = 0;
+Mesh.MeshSizeFromCurvature = 0;
+e = 1e-6;
+
+Sphere(1) = {0, 0, 1, 1};
+Box(2) = {0, 0, 0, 1.5, 1.5, 1};
+ball() = BooleanIntersection{ Volume{1}; Delete; }{ Volume{2}; Delete; };
+Box(3) = {0, 0, -2, 2, 2, 2};
+
+// hemisphere faces
+b_top() = Surface In BoundingBox{-e, -e, 1 - e, 1 + e, 1 + e, 1 + e};
+b_x0()  = Surface In BoundingBox{-e, -e, -e, e, 1 + e, 1 + e};
+b_y0()  = Surface In BoundingBox{-e, -e, -e, 1 + e, e, 1 + e};
+b_all() = Boundary{ Volume{ball()}; };
+b_curved() = b_all();
+b_curved() -= {b_top(), b_x0(), b_y0()};
+// block faces
+k_top() = Surface In BoundingBox{-e, -e, -e, 2 + e, 2 + e, e};
+k_bot() = Surface In BoundingBox{-e, -e, -2 - e, 2 + e, 2 + e, -2 + e};
+k_x0()  = Surface In BoundingBox{-e, -e, -2 - e, e, 2 + e, e};
+k_y0()  = Surface In BoundingBox{-e, -e, -2 - e, 2 + e, e, e};
+k_x2()  = Surface In BoundingBox{2 - e, -e, -2 - e, 2 + e, 2 + e, e};
+k_y2()  = Surface In BoundingBox{-e, 2 - e, -2 - e, 2 + e, 2 + e, e};
+
+Physical Volume("ball", 1) = {ball()};
+Physical Volume("block", 2) = {3};
+Physical Surface("ball_contact", 1) = {b_curved()};
+Physical Surface("ball_top", 2) = {b_top()};
+Physical Surface("ball_x0", 3) = {b_x0()};
+Physical Surface("ball_y0", 4) = {b_y0()};
+Physical Surface("block_top", 11) = {k_top()};
+Physical Surface("block_bottom", 12) = {k_bot()};
+Physical Surface("block_x0", 13) = {k_x0()};
+Physical Surface("block_y0", 14) = {k_y0()};
+Physical Surface("block_x2", 15) = {k_x2()};
+Physical Surface("block_y2", 16) = {k_y2()};
+
+Field[1] = MathEval;
+Field[1].F = Sprintf("Min(0.25, %g + 0.5 * Max(0, Sqrt(x*x + y*y + z*z) - 0.3))", hc);
+Background Field = 1;

@@ -1,0 +1,32 @@
+/* ffc_io.c: file output of contact points (legacy VTK point cloud). */
+#include "ffc.h"
+
+#include <math.h>
+#include <stdio.h>
+
+int ffc_points_vtk(const char *path, long n, const double P[])
+{
+    if (!path || (n > 0 && !P)) return FFC_ERR_NULL;
+    if (n < 0) return FFC_ERR_SIZE;
+    FILE *f = fopen(path, "w");
+    if (!f) return FFC_ERR_VALUE;
+    fprintf(f, "# vtk DataFile Version 3.0\ncontact points\nASCII\nDATASET POLYDATA\n");
+    fprintf(f, "POINTS %ld double\n", n);
+    for (long k = 0; k < n; k++)
+        fprintf(f, "%.17g %.17g %.17g\n", P[k * FFC_POINT_COLS], P[k * FFC_POINT_COLS + 1],
+                P[k * FFC_POINT_COLS + 2]);
+    fprintf(f, "VERTICES %ld %ld\n", n, 2 * n);
+    for (long k = 0; k < n; k++) fprintf(f, "1 %ld\n", k);
+    static const char *names[3] = {"gap", "pressure", "active"};
+    fprintf(f, "POINT_DATA %ld\n", n);
+    for (int c = 0; c < 3; c++) {
+        fprintf(f, "SCALARS %s double 1\nLOOKUP_TABLE default\n", names[c]);
+        for (long k = 0; k < n; k++) {
+            double v = P[k * FFC_POINT_COLS + 3 + c];
+            fprintf(f, "%.17g\n", isfinite(v) ? v : -1.0); /* no partner: gap -1 */
+        }
+    }
+    int bad = ferror(f);
+    if (fclose(f) != 0 || bad) return FFC_ERR_VALUE;
+    return FFC_OK;
+}
