@@ -10,7 +10,7 @@ CXX     ?= g++
 CFLAGS  ?= -O2
 CFLAGS  += -std=c11 -Wall -Wextra -Werror -fPIC -Iinclude
 FFFLAGS  = -shared -fPIC -O2 -std=c++14 -DBAMG_LONG_LONG -DNCHECKPTR -DNDEBUG \
-           -I/usr/include/freefem++ -Iinclude -Wall -Wno-unused-parameter -Wno-mismatched-new-delete
+           -isystem /usr/include/freefem++ -Iinclude -Wall -Wno-unused-parameter -Wno-mismatched-new-delete
 B       := build
 
 CSRC    := $(wildcard plugin/*.c)

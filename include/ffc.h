@@ -25,7 +25,8 @@ enum {
     FFC_ERR_INDEX = -10,          /* a node index out of range */
     FFC_ERR_LABEL = -11,          /* a label that no boundary face carries */
     FFC_ERR_VALUE = -12,          /* a parameter outside its admissible range */
-    FFC_ERR_MEMORY = -13          /* allocation failed */
+    FFC_ERR_MEMORY = -13,         /* allocation failed */
+    FFC_ERR_INVERTED = -14        /* a facet turned inside out (normal reversed) */
 };
 
 /* Human-readable text of a status code (static string, never NULL). */
@@ -163,6 +164,13 @@ int ffc_surface_area(int nn, long nf, const long F[], long nv,
                      const double X[], const double u[], int degree,
                      double *area);
 
+/* Checks the nt tetrahedra T[nt*4] at positions X + u: FFC_ERR_INVERTED
+ * (*bad = the tetrahedron) when one has turned inside out or collapsed
+ * (its signed volume, relative to the reference one, below 1e-12), e.g.
+ * after a diverged Newton step. */
+int ffc_volume_check(long nt, const long T[], long nv, const double X[],
+                     const double u[], long *bad);
+
 /* Unit normals N[nf*3] at the centroid of each facet of F[nf*nn], at
  * positions X + u (u may be NULL).  Errors as ffc_surface_check. */
 int ffc_surface_normals(int nn, long nf, const long F[], long nv,
@@ -299,6 +307,10 @@ typedef struct {
                           lambda[nl], updated pointwise as in the seed (more
                           constraints than contact unknowns: the multipliers
                           may drift and Uzawa may stall) */
+    int material_only; /* 1: tangent without the geometric terms (variation of
+                          the normal, the foot and the area): positive
+                          semi-definite, for a descent direction when the
+                          consistent tangent is indefinite; 0: consistent */
 } ffc_law;
 
 /* Summary of an assembly or augmentation. */

@@ -24,6 +24,7 @@ const char *ffc_strerror(int status)
     case FFC_ERR_LABEL: return "no boundary face carries this label";
     case FFC_ERR_VALUE: return "parameter outside its admissible range";
     case FFC_ERR_MEMORY: return "out of memory";
+    case FFC_ERR_INVERTED: return "inverted element (signed volume reversed or zero)";
     default: return "unknown status";
     }
 }

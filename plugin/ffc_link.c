@@ -178,7 +178,8 @@ static int common_checks(const ffc_effects *fx, const ffc_pair *P, int qdeg, lon
     if (!fx || !links || !law) return FFC_ERR_NULL;
     int s = check_pair(P);
     if (s) return s;
-    if (!(law->eps_n > 0) || isinf(law->eps_n) || (law->nodal != 0 && law->nodal != 1))
+    if (!(law->eps_n > 0) || isinf(law->eps_n) || (law->nodal != 0 && law->nodal != 1) ||
+        (law->material_only != 0 && law->material_only != 1))
         return FFC_ERR_VALUE;
     double qxi[16][2];
     *nq = ffc_quad(qdeg, 16, qxi, qw);
@@ -327,9 +328,9 @@ static int emit(long *nt, long cap, long Ti[], long Tj[], double Tv[], long i, l
 }
 
 static int assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double qw[], int nq, long nl,
-                          const ffc_link links[], const double lambda[], double eps, double R[],
-                          long cap, long Ti[], long Tj[], double Tv[], long *ntrip, ffc_stats *stats,
-                          long *bad)
+                          const ffc_link links[], const double lambda[], double eps, int material_only,
+                          double R[], long cap, long Ti[], long Tj[], double Tv[], long *ntrip,
+                          ffc_stats *stats, long *bad)
 {
     nodal_t w;
     int s = nodal_prepare(fx, P, qw, nq, nl, links, lambda, eps, &w, stats, bad);
@@ -348,7 +349,7 @@ static int assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double
         if (t > stats->max_tn) stats->max_tn = t;
         for (int a = 0; a < E->nd; a++) R[E->dof[a]] -= t * E->da * E->G[a];
         for (int i = 0; i < 3; i++) stats->force[i] += t * E->da * E->n[i];
-        if (!want_k) continue;
+        if (!want_k || material_only) continue;
         double Xs[FFC_MAXNODES][3], Xs0[FFC_MAXNODES][3], Xm[FFC_MAXNODES][3], Xm0[FFC_MAXNODES][3];
         long dof[FFC_MAXDOF];
         gather(P->ns, P->Fs, lk->sf, P->X, P->u, Xs, Xs0, dof);
@@ -449,8 +450,8 @@ int ffc_assemble(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
     if (!stats) stats = &loc;
     stats_init(stats);
     if (law->nodal)
-        return assemble_nodal(effects, pair, qw, nq, nl, links, lambda, eps, R, cap, Ti, Tj, Tv, ntrip,
-                              stats, bad);
+        return assemble_nodal(effects, pair, qw, nq, nl, links, lambda, eps, law->material_only, R, cap, Ti,
+                              Tj, Tv, ntrip, stats, bad);
     long nt = 0;
     int over = 0;
     double Rl[FFC_MAXDOF], Kl[FFC_MAXDOF][FFC_MAXDOF];
@@ -467,6 +468,11 @@ int ffc_assemble(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
         for (int a = 0; a < nd; a++) R[dof[a]] += Rl[a];
         if (!want_k) continue;
         if (nt + (long)nd * nd > cap) { over = 1; nt += (long)nd * nd; continue; }
+        if (law->material_only) { /* K = da eps G G^T, G = -R / (da t_N) */
+            const double c = eps / (st.da * st.tn * st.tn);
+            for (int a = 0; a < nd; a++)
+                for (int b = 0; b < nd; b++) Kl[a][b] = c * Rl[a] * Rl[b];
+        }
         for (int a = 0; a < nd; a++)
             for (int b = 0; b < nd; b++) {
                 Ti[nt] = dof[a];

@@ -178,3 +178,34 @@ int ffc_surface_normals(int nn, long nf, const long F[], long nv,
     }
     return FFC_OK;
 }
+
+/* six times the signed volume of the tetrahedron with vertices v[4] */
+static double tet_vol6(const long v[4], const double X[], const double u[])
+{
+    double e[3][3];
+    for (int k = 0; k < 3; k++)
+        for (int i = 0; i < 3; i++)
+            e[k][i] = X[3 * v[k + 1] + i] - X[3 * v[0] + i] +
+                      (u ? u[3 * v[k + 1] + i] - u[3 * v[0] + i] : 0.0);
+    double c[3];
+    ffc__cross(e[0], e[1], c);
+    return ffc__dot(c, e[2]);
+}
+
+int ffc_volume_check(long nt, const long T[], long nv, const double X[],
+                     const double u[], long *bad)
+{
+    long dummy;
+    if (!bad) bad = &dummy;
+    *bad = -1;
+    if (!T || !X) return FFC_ERR_NULL;
+    if (nt < 0 || nv <= 0) return FFC_ERR_SIZE;
+    for (long t = 0; t < nt; t++) {
+        for (int a = 0; a < 4; a++)
+            if (T[4 * t + a] < 0 || T[4 * t + a] >= nv) { *bad = t; return FFC_ERR_INDEX; }
+        const double v0 = tet_vol6(T + 4 * t, X, NULL), v = tet_vol6(T + 4 * t, X, u);
+        if (!isfinite(v)) { *bad = t; return FFC_ERR_NONFINITE; }
+        if (!(v / v0 > 1e-12)) { *bad = t; return FFC_ERR_INVERTED; }
+    }
+    return FFC_OK;
+}

@@ -3,6 +3,7 @@
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 
+#include <chrono>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,6 +21,8 @@ struct MeshArrays {
     std::vector<long> be;      // [nbe*3] boundary face vertices
     std::vector<long> belab;   // [nbe] boundary face labels
     std::vector<long> beopp;   // [nbe] vertex of the adjacent tet opposite the face
+    long nt = 0;
+    std::vector<long> T;       // [nt*4] tetrahedra
 };
 
 const long CP_HEAD = 4; // header entries of a contact pair descriptor
@@ -35,6 +38,10 @@ void mesh_arrays(const Mesh3 &Th, MeshArrays &m)
         m.X[3 * i + 1] = P.y;
         m.X[3 * i + 2] = P.z;
     }
+    m.nt = Th.nt;
+    m.T.resize(4 * m.nt);
+    for (long k = 0; k < m.nt; k++)
+        for (int j = 0; j < 4; j++) m.T[4 * k + j] = Th(k, j);
     m.be.resize(3 * m.nbe);
     m.belab.resize(m.nbe);
     m.beopp.resize(m.nbe);
@@ -136,6 +143,7 @@ void check_surface(const char *fn, const char *arg, long nf, const long *F,
     else if (st == FFC_ERR_DEGENERATE)
         s << "facet " << bad << " (vertices " << F[3 * bad] << ", " << F[3 * bad + 1]
           << ", " << F[3 * bad + 2] << ") is degenerate: zero area";
+
     else
         s << "facet " << bad << ": " << ffc_strerror(st);
     fail(fn, s.str());
@@ -378,7 +386,8 @@ struct LinkCall {
 
 // Options opt (real[int]): [eps_N (> 0, force/length^3), effects bits,
 // multipliers (1: at slave nodes, lambda[nv], default; 0: at slave
-// quadrature points, lambda[nlinks])].
+// quadrature points, lambda[nlinks]), tangent (0: consistent, default;
+// 1: material part only, positive semi-definite)].
 struct Options {
     double eps;
     ffc_effects fx;
@@ -407,6 +416,13 @@ Options need_options(const char *fn, KN<double> *opt)
         if (m != 0 && m != 1)
             fail(fn, "argument 'opt': multipliers = opt[2] = " + num(m) + " must be 1 (slave nodes) or 0 (quadrature points)");
         o.law.nodal = (int)m;
+    }
+    o.law.material_only = 0;
+    if (opt->N() >= 4) {
+        double m = (*opt)[3];
+        if (m != 0 && m != 1)
+            fail(fn, "argument 'opt': tangent = opt[3] = " + num(m) + " must be 0 (consistent) or 1 (material part only)");
+        o.law.material_only = (int)m;
     }
     return o;
 }
@@ -465,6 +481,14 @@ void need_links(const char *fn, pmesh3 pTh, KN<double> *u, KN<long> *CP,
     }
     check_surface(fn, "CP (slave facets)", c.nfs, P.Fs, c.m, c.u);
     check_surface(fn, "CP (master facets)", c.nfm, P.Fm, c.m, c.u);
+    long bad = -1;
+    if (ffc_volume_check(c.m.nt, c.m.T.data(), c.m.nv, c.m.X.data(), c.u, &bad) == FFC_ERR_INVERTED) {
+        std::ostringstream s;
+        s << "argument 'u': tetrahedron " << bad << " (vertices " << c.m.T[4 * bad] << ", " << c.m.T[4 * bad + 1]
+          << ", " << c.m.T[4 * bad + 2] << ", " << c.m.T[4 * bad + 3]
+          << ") is inverted or collapsed by the displacement: did Newton diverge?";
+        fail(fn, s.str());
+    }
     c.pair.ns = 3; c.pair.nfs = c.nfs; c.pair.Fs = P.Fs;
     c.pair.nm = 3; c.pair.nfm = c.nfm; c.pair.Fm = P.Fm;
     c.pair.nv = c.m.nv; c.pair.X = c.m.X.data(); c.pair.u = c.u;
@@ -626,6 +650,28 @@ long ffcSaveVTK(string *const &file, KNM<double> *const &P)
     return n;
 }
 
+// ffcInverted(Th, u): the first tetrahedron that X + u turns inside out or
+// collapses, or -1 (a query for line searches: no error).
+long ffcInverted(pmesh3 const &pTh, KN<double> *const &u)
+{
+    const char *fn = "ffcInverted";
+    const Mesh3 &Th = need_mesh(fn, pTh);
+    MeshArrays m;
+    mesh_arrays(Th, m);
+    if (!u || u->N() != 3 * m.nv) fail(fn, "argument 'u': expected the 3*nv coefficients of a [P1,P1,P1] displacement");
+    long bad = -1;
+    int st = ffc_volume_check(m.nt, m.T.data(), m.nv, m.X.data(), &(*u)[0], &bad);
+    return st == FFC_OK ? -1 : bad;
+}
+
+// ffcTime(): monotonic wall-clock time in seconds (for timings; FreeFEM's
+// clock() is processor time, summed over threads).
+double ffcTime()
+{
+    using namespace std::chrono;
+    return duration<double>(steady_clock::now().time_since_epoch()).count();
+}
+
 } // namespace
 
 static void init()
@@ -634,6 +680,8 @@ static void init()
                new OneOperator3_<long, pmesh3, KN<long> *, KN<long> *>(ffcSurface));
     Global.Add("ffcArea", "(",
                new OneOperator3_<double, pmesh3, KN<long> *, KN<double> *>(ffcArea));
+    Global.Add("ffcTime", "(", new OneOperator0<double>(ffcTime));
+    Global.Add("ffcInverted", "(", new OneOperator2_<long, pmesh3, KN<double> *>(ffcInverted));
     Global.Add("ffcPair", "(",
                new OneOperator4_<long, pmesh3, KN<long> *, KN<long> *, KN<long> *>(ffcPair));
     Global.Add("ffcSearch", "(",

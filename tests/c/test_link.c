@@ -219,7 +219,7 @@ static void test_assemble_augment(void **state)
     long Ti[2000], Tj[2000], nt, bad;
     double Tv[2000];
     ffc_stats st;
-    ffc_law law = {100, 0};
+    ffc_law law = {100, 0, 0};
     /* too small a buffer: the count needed is returned */
     assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, &law, R, 10, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_CAPACITY);
     assert_int_equal(nt, 6 * 18 * 18);
@@ -253,7 +253,7 @@ static void test_assemble_augment(void **state)
     /* nodal multipliers: the weighted gap of every slave node is -0.01, so
      * one augmentation gives lambda = 1 at the 4 slave nodes (and 0 at the
      * master nodes); the pressure is then 1 + 100 * 0.01 = 2 everywhere */
-    ffc_law nod = {100, 1};
+    ffc_law nod = {100, 1, 0};
     double lamv[8] = {0};
     assert_int_equal(ffc_augment(&fx, &P, 2, 6, L, lamv, &nod, &st, &bad), FFC_OK);
     for (int v = 0; v < 8; v++) assert_close(lamv[v], v >= 4 ? 1.0 : 0.0, 1e-12);
@@ -327,7 +327,7 @@ static void test_nodal_tangent(void **state)
     ffc_tree_free(t);
     double lam[NV] = {0};
     for (int v = 25; v < NV; v++) lam[v] = v % 3 ? test_rand(&s, 0.0, 0.5) : 0.0;
-    ffc_law law = {60, 1};
+    ffc_law law = {60, 1, 0};
     ffc_pair P = {3, NFS, Fs, 3, NFM, Fm, NV, X, u};
     enum { CAP = 200000 };
     long *Ti = malloc(CAP * sizeof *Ti), *Tj = malloc(CAP * sizeof *Tj), nt, bad;
@@ -361,6 +361,27 @@ static void test_nodal_tangent(void **state)
             }
         }
         if (!(err <= 1e-6 * scale)) fail_msg("nodal tangent error %.3g of scale %.3g (finite %d)", err, scale, finite);
+    }
+    /* material-only tangent: symmetric positive semi-definite (x^T K x >= 0
+     * for random x) and equal to the consistent one minus geometric terms */
+    {
+        ffc_effects fx = {0, 0, 0};
+        ffc_law mo = law;
+        mo.material_only = 1;
+        double R[NV * 3] = {0};
+        ffc_stats st;
+        assert_int_equal(ffc_assemble(&fx, &P, 2, NFS * nq, L, lam, &mo, R, CAP, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
+        memset(K, 0, sizeof K);
+        for (long k = 0; k < nt; k++) K[Ti[k]][Tj[k]] += Tv[k];
+        for (int trial = 0; trial < 20; trial++) {
+            double xv[NV * 3], q = 0, nrm = 0;
+            for (int i = 0; i < NV * 3; i++) { xv[i] = test_rand(&s, -1, 1); nrm += xv[i] * xv[i]; }
+            for (int i = 0; i < NV * 3; i++)
+                for (int j = 0; j < NV * 3; j++) q += xv[i] * K[i][j] * xv[j];
+            assert_true(q >= -1e-12 * nrm);
+        }
+        for (int i = 0; i < NV * 3; i++)
+            for (int j = 0; j < NV * 3; j++) assert_close(K[i][j], K[j][i], 1e-12 * (1 + fabs(K[i][j])));
     }
     /* the nodal update: lambda_a <- <lambda_a - eps g~_a>; a second update
      * at the same displacement changes nothing when g~ = 0 is not reached,

@@ -68,6 +68,19 @@ static void test_check_errors(void **state)
     v[9] = 0; v[10] = 1; v[11] = -1;
     assert_int_equal(ffc_surface_check(3, 2, F, 4, TX, v, &bad), FFC_ERR_DEGENERATE);
     assert_int_equal(bad, 0);
+    /* the tetrahedron: fine, rotated by 180 degrees (fine), reflected
+     * x -> -x (inside out), flattened (collapsed) */
+    const long T[4] = {0, 1, 2, 3};
+    double w[12] = {0};
+    assert_int_equal(ffc_volume_check(1, T, 4, TX, w, &bad), FFC_OK);
+    for (int v = 0; v < 4; v++) { w[3 * v] = -2 * TX[3 * v]; w[3 * v + 1] = -2 * TX[3 * v + 1]; }
+    assert_int_equal(ffc_volume_check(1, T, 4, TX, w, &bad), FFC_OK);
+    for (int v = 0; v < 4; v++) { w[3 * v] = -2 * TX[3 * v]; w[3 * v + 1] = 0; }
+    assert_int_equal(ffc_volume_check(1, T, 4, TX, w, &bad), FFC_ERR_INVERTED);
+    assert_int_equal(bad, 0);
+    w[0] = w[3] = 0;
+    w[11] = -1; /* vertex 3 onto the plane z = 0 */
+    assert_int_equal(ffc_volume_check(1, T, 4, TX, w, &bad), FFC_ERR_INVERTED);
     const long G[3] = {0, 1, 9};
     assert_int_equal(ffc_surface_check(3, 1, G, 4, TX, NULL, &bad), FFC_ERR_INDEX);
     assert_int_equal(bad, 0);
