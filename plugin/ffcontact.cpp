@@ -365,11 +365,11 @@ ffc_effects need_effects(const char *fn, long bits)
 {
     if (bits < 0 || bits > 7) {
         std::ostringstream s;
-        s << "argument 'effects': " << bits << " is not a set of effects (bits: 1 friction, 2 dynamic, 4 finite deformation)";
+        s << "argument 'opt': effects = opt[1] = " << bits << " is not a set of effects (bits: 1 friction, 2 dynamic, 4 finite deformation)";
         fail(fn, s.str());
     }
-    if (bits & 1) fail(fn, "argument 'effects': friction (bit 1) is not available in this version");
-    if (bits & 2) fail(fn, "argument 'effects': dynamic contact (bit 2) is not available in this version");
+    if (bits & 1) fail(fn, "argument 'opt': friction (bit 1) is not available in this version");
+    if (bits & 2) fail(fn, "argument 'opt': dynamic contact (bit 2) is not available in this version");
     ffc_effects e = {0, 0, (bits & 4) ? 1 : 0};
     return e;
 }
