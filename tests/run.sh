@@ -27,10 +27,12 @@ done
 for t in tests/edp/test_*.edp tests/hard/*.edp; do
     [ -f "$t" ] || continue
     case "$t" in *"$pat"*) ;; *) continue ;; esac
-    if sh scripts/ff "$t" >"$log" 2>&1; then
+    sh scripts/ff "$t" >"$log" 2>&1
+    rc=$?
+    if [ "$rc" -eq 0 ]; then
         pass=$((pass + 1))
     else
-        fail=$((fail + 1)); report "$t (exit $?)"
+        fail=$((fail + 1)); report "$t (exit $rc)"
     fi
 done
 
