@@ -354,6 +354,25 @@ int ffc_points(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
  * cannot be written. */
 int ffc_points_vtk(const char *path, long n, const double P[]);
 
+/* ------------------------------------------------- quadratic tetrahedra */
+/* Numbers the nodes of P2 tetrahedra T[nt*4] (nv vertices) as FreeFEM
+ * numbers scalar P2 degrees of freedom: element by element, the 4 vertices
+ * then the edges (0,1), (0,2), (0,3), (1,2), (1,3), (2,3), each node at its
+ * first appearance.  node[nt*10] receives the nodes of each element,
+ * *nnodes their count.  (For [P2,P2,P2] the dof of node i, component c is
+ * 3 i + c.) */
+int ffc_p2_number(long nt, const long T[], long nv, long node[], long *nnodes);
+
+/* Positions X2[nnodes*3] of the P2 nodes of straight-sided tetrahedra:
+ * the vertices and the edge midpoints of X[nv*3]. */
+int ffc_p2_positions(long nt, const long T[], const long node[], const double X[],
+                     long nnodes, double X2[]);
+
+/* The 6 nodes of the face (face[3], vertex numbers, in facet order) of the
+ * tetrahedron T4 with nodes node10: the 3 vertex nodes, then the mid-edge
+ * nodes of edges 0-1, 1-2, 2-0 of the face. */
+int ffc_p2_face(const long T4[4], const long node10[10], const long face[3], long out[6]);
+
 #ifdef __cplusplus
 }
 #endif

@@ -291,7 +291,11 @@ static int nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double 
         e->g = st.gap;
         e->da = st.da;
         for (int i = 0; i < 3; i++) e->n[i] = st.n[i];
-        ffc_shape(P->ns, lk->xs, e->N, NULL);
+        /* multipliers are linear on the facet's vertices (for 6-node facets
+         * too: quadratic vertex shape functions integrate to zero, which
+         * would leave vertex nodes without weight) */
+        ffc_shape(3, lk->xs, e->N, NULL);
+        for (int a = 3; a < P->ns; a++) e->N[a] = 0.0;
         for (int a = 0; a < P->ns; a++) {
             long v = P->Fs[lk->sf * P->ns + a];
             w->Gn[v] += e->N[a] * e->da * e->g;

@@ -3,7 +3,10 @@
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -23,6 +26,16 @@ struct MeshArrays {
     std::vector<long> beopp;   // [nbe] vertex of the adjacent tet opposite the face
     long nt = 0;
     std::vector<long> T;       // [nt*4] tetrahedra
+    std::vector<long> betet;   // [nbe] tetrahedron behind each boundary face
+};
+
+// Quadratic (P2) nodes: FreeFEM's scalar P2 numbering, rebuilt from the mesh.
+// (declared before use in need_pair)
+struct P2Arrays {
+    long nn = 0;               // nodes
+    std::vector<long> node;    // [nt*10] nodes of each tetrahedron
+    std::vector<double> X2;    // [nn*3] positions (vertices, edge midpoints)
+    std::vector<long> vnode;   // [nv] node of each vertex
 };
 
 const long CP_HEAD = 4; // header entries of a contact pair descriptor
@@ -45,6 +58,7 @@ void mesh_arrays(const Mesh3 &Th, MeshArrays &m)
     m.be.resize(3 * m.nbe);
     m.belab.resize(m.nbe);
     m.beopp.resize(m.nbe);
+    m.betet.resize(m.nbe);
     for (long k = 0; k < m.nbe; k++) {
         const Mesh3::BorderElement &B = Th.be(k);
         for (int j = 0; j < 3; j++) m.be[3 * k + j] = Th(B[j]);
@@ -52,6 +66,7 @@ void mesh_arrays(const Mesh3 &Th, MeshArrays &m)
         int ie = 0;
         int it = Th.BoundaryElement(k, ie);
         m.beopp[k] = Th(Th[it][ie]);
+        m.betet[k] = it;
     }
 }
 
@@ -73,6 +88,19 @@ std::string labels_present(const MeshArrays &m)
     return s.str();
 }
 
+void p2_arrays(const char *fn, const MeshArrays &m, P2Arrays &p)
+{
+    p.node.resize(10 * m.nt);
+    int st = ffc_p2_number(m.nt, m.T.data(), m.nv, p.node.data(), &p.nn);
+    if (st) fail(fn, std::string("P2 numbering: ") + ffc_strerror(st));
+    p.X2.resize(3 * p.nn);
+    st = ffc_p2_positions(m.nt, m.T.data(), p.node.data(), m.X.data(), p.nn, p.X2.data());
+    if (st) fail(fn, std::string("P2 positions: ") + ffc_strerror(st));
+    p.vnode.assign(m.nv, -1);
+    for (long k = 0; k < m.nt; k++)
+        for (int a = 0; a < 4; a++) p.vnode[m.T[4 * k + a]] = p.node[10 * k + a];
+}
+
 // a real as text, NaN and Inf spelled out
 std::string num(double v)
 {
@@ -89,21 +117,23 @@ const Mesh3 &need_mesh(const char *fn, pmesh3 pTh)
     return *pTh;
 }
 
-// Displacement array u[] of a [P1,P1,P1] function: 3*nv values.
-const double *need_disp(const char *fn, KN<double> *u, long nv)
+// Displacement array u[] of a [P1,P1,P1] (or, with p2 set, [P2,P2,P2])
+// function: 3 values per node.
+const double *need_disp(const char *fn, KN<double> *u, long nv, bool p2 = false)
 {
     if (!u) fail(fn, "argument 'u': array is not defined");
     if (u->N() != 3 * nv) {
         std::ostringstream s;
-        s << "argument 'u': size " << u->N() << ", expected 3*nv = " << 3 * nv
-          << " (the coefficients of a [P1,P1,P1] displacement)";
+        s << "argument 'u': size " << u->N() << ", expected " << 3 * nv
+          << (p2 ? " (the coefficients of a [P2,P2,P2] displacement: 3 per P2 node)"
+                 : " = 3*nv (the coefficients of a [P1,P1,P1] displacement)");
         fail(fn, s.str());
     }
     for (long i = 0; i < u->N(); i++)
         if (!std::isfinite((*u)[i])) {
             std::ostringstream s;
             s << "argument 'u': u[" << i << "] = " << num((*u)[i])
-              << " is not finite (vertex " << i / 3 << ", component " << i % 3 << ")";
+              << " is not finite (" << (p2 ? "node " : "vertex ") << i / 3 << ", component " << i % 3 << ")";
             fail(fn, s.str());
         }
     return &(*u)[0];
@@ -216,6 +246,72 @@ long ffcPair(pmesh3 const &pTh, KN<long> *const &sl, KN<long> *const &ml, KN<lon
     return nfs;
 }
 
+// ffcPair2(Th, slaveLabs, masterLabs, CP): the contact pair of quadratic
+// ([P2,P2,P2]) bodies: [6, nfs, 6, nfm, slave facets, master facets], six
+// P2 nodes per facet (FreeFEM's scalar P2 numbering); returns nfs.
+long ffcPair2(pmesh3 const &pTh, KN<long> *const &sl, KN<long> *const &ml, KN<long> *const &CP)
+{
+    const char *fn = "ffcPair2";
+    if (!CP) fail(fn, "argument 'CP': array is not defined");
+    KN<long> F3s(1), F3m(1);
+    const Mesh3 &Th = need_mesh(fn, pTh);
+    if (!sl || sl->N() == 0) fail(fn, "argument 'slaveLabs': empty list of labels");
+    if (!ml || ml->N() == 0) fail(fn, "argument 'masterLabs': empty list of labels");
+    for (long i = 0; i < sl->N(); i++)
+        for (long j = 0; j < ml->N(); j++)
+            if ((*sl)[i] == (*ml)[j]) {
+                std::ostringstream s;
+                s << "label " << (*sl)[i] << " is in both 'slaveLabs' and 'masterLabs'";
+                fail(fn, s.str());
+            }
+    long nfs = select_surface(fn, "slaveLabs", Th, sl, &F3s);
+    long nfm = select_surface(fn, "masterLabs", Th, ml, &F3m);
+    MeshArrays m;
+    mesh_arrays(Th, m);
+    P2Arrays p2;
+    p2_arrays(fn, m, p2);
+    // boundary face of each vertex triple
+    std::map<std::array<long, 3>, long> face;
+    for (long k = 0; k < m.nbe; k++) {
+        std::array<long, 3> key = {m.be[3 * k], m.be[3 * k + 1], m.be[3 * k + 2]};
+        std::sort(key.begin(), key.end());
+        face[key] = k;
+    }
+    CP->resize(CP_HEAD + 6 * nfs + 6 * nfm);
+    (*CP)[0] = 6; (*CP)[1] = nfs; (*CP)[2] = 6; (*CP)[3] = nfm;
+    long pos = CP_HEAD;
+    for (int side = 0; side < 2; side++) {
+        const KN<long> &F = side ? F3m : F3s;
+        for (long f = 0; f < F.N() / 3; f++) {
+            long v[3] = {F[3 * f], F[3 * f + 1], F[3 * f + 2]};
+            std::array<long, 3> key = {v[0], v[1], v[2]};
+            std::sort(key.begin(), key.end());
+            const long k = face.at(key), t = m.betet[k];
+            long out[6];
+            int st = ffc_p2_face(&m.T[4 * t], &p2.node[10 * t], v, out);
+            if (st) fail(fn, std::string("P2 face: ") + ffc_strerror(st));
+            for (int a = 0; a < 6; a++) (*CP)[pos++] = out[a];
+        }
+    }
+    return nfs;
+}
+
+// ffcP2Nodes(Th, X2): positions of the P2 nodes in FreeFEM's scalar P2
+// numbering (3 per node); returns the number of nodes.
+long ffcP2Nodes(pmesh3 const &pTh, KN<double> *const &X2)
+{
+    const char *fn = "ffcP2Nodes";
+    const Mesh3 &Th = need_mesh(fn, pTh);
+    if (!X2) fail(fn, "argument 'X2': array is not defined");
+    MeshArrays m;
+    mesh_arrays(Th, m);
+    P2Arrays p2;
+    p2_arrays(fn, m, p2);
+    X2->resize(3 * p2.nn);
+    for (long i = 0; i < 3 * p2.nn; i++) (*X2)[i] = p2.X2[i];
+    return p2.nn;
+}
+
 // ffcArea(Th, F, u): area of the surface F in the configuration X + u.
 double ffcArea(pmesh3 const &pTh, KN<long> *const &F, KN<double> *const &u)
 {
@@ -256,6 +352,25 @@ long ffcNormals(pmesh3 const &pTh, KN<long> *const &F, KN<double> *const &u,
     return nf;
 }
 
+// Facets F[nf*nper] of a pair against nodes at X + u: indices, finite
+// positions, non-degenerate facets.
+void check_facets(const char *fn, const char *arg, int nper, long nf, const long *F, long nnodes,
+                  const double *X, const double *u)
+{
+    long bad = -1;
+    int st = ffc_surface_check(nper, nf, F, nnodes, X, u, &bad);
+    if (st == FFC_OK) return;
+    std::ostringstream s;
+    s << "argument '" << arg << "': ";
+    if (st == FFC_ERR_NONFINITE)
+        s << "node " << bad << " has a non-finite position";
+    else if (st == FFC_ERR_DEGENERATE)
+        s << "facet " << bad << " is degenerate: zero area";
+    else
+        s << "facet " << bad << ": " << ffc_strerror(st);
+    fail(fn, s.str());
+}
+
 // A contact pair descriptor CP (int[int]): [ns, nfs, nm, nfm, Fs (ns*nfs), Fm (nm*nfm)]
 // (CP_HEAD entries of header, defined at the top).
 struct PairView {
@@ -263,14 +378,14 @@ struct PairView {
     const long *Fs, *Fm;
 };
 
-PairView need_pair(const char *fn, KN<long> *CP, long nv)
+PairView need_pair(const char *fn, KN<long> *CP, const MeshArrays &m, P2Arrays &p2)
 {
     if (!CP) fail(fn, "argument 'CP': array is not defined");
     const long n = CP->N();
     if (n < CP_HEAD) fail(fn, "argument 'CP': not a contact pair (make it with ffcPair)");
     PairView p;
     p.ns = (*CP)[0]; p.nfs = (*CP)[1]; p.nm = (*CP)[2]; p.nfm = (*CP)[3];
-    if (p.ns != 3 || p.nm != 3 || p.nfs <= 0 || p.nfm <= 0 ||
+    if ((p.ns != 3 && p.ns != 6) || p.nm != p.ns || p.nfs <= 0 || p.nfm <= 0 ||
         n != CP_HEAD + p.ns * p.nfs + p.nm * p.nfm) {
         std::ostringstream s;
         s << "argument 'CP': header [" << p.ns << ", " << p.nfs << ", " << p.nm << ", " << p.nfm
@@ -279,21 +394,16 @@ PairView need_pair(const char *fn, KN<long> *CP, long nv)
     }
     p.Fs = &(*CP)[CP_HEAD];
     p.Fm = p.Fs + p.ns * p.nfs;
+    if (p.ns == 6) p2_arrays(fn, m, p2);
+    const long nv = p.ns == 6 ? p2.nn : m.nv;
     for (long i = CP_HEAD; i < n; i++)
         if ((*CP)[i] < 0 || (*CP)[i] >= nv) {
             std::ostringstream s;
-            s << "argument 'CP': entry " << i << " = " << (*CP)[i] << " is not a vertex of the mesh";
+            s << "argument 'CP': entry " << i << " = " << (*CP)[i] << " is not a " << (p.ns == 6 ? "P2 node" : "vertex")
+              << " of the mesh";
             fail(fn, s.str());
         }
     return p;
-}
-
-// current positions x = X + u of all vertices
-std::vector<double> current_positions(const MeshArrays &m, const double *u)
-{
-    std::vector<double> x(m.X);
-    for (size_t i = 0; i < x.size(); i++) x[i] += u[i];
-    return x;
 }
 
 // Columns of a link row (real[int,int] L(nlinks, FFC_LINK_COLS)).
@@ -319,21 +429,27 @@ long ffcSearch(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
     if (!(cabs >= 0) || std::isinf(cabs)) fail(fn, "argument 'cabs': capture distance " + num(cabs) + " must be finite and >= 0");
     MeshArrays m;
     mesh_arrays(Th, m);
-    const double *pu = need_disp(fn, u, m.nv);
-    PairView P = need_pair(fn, CP, m.nv);
+    P2Arrays p2;
+    PairView P = need_pair(fn, CP, m, p2);
+    const bool quad = P.ns == 6;
+    const long nn = quad ? p2.nn : m.nv;
+    const double *X = quad ? p2.X2.data() : m.X.data();
+    const double *pu = need_disp(fn, u, nn, quad);
     const long nfs = P.nfs, nfm = P.nfm;
-    check_surface(fn, "CP (slave facets)", nfs, P.Fs, m, pu);
-    check_surface(fn, "CP (master facets)", nfm, P.Fm, m, pu);
-    std::vector<double> x = current_positions(m, pu);
+    const int nper = (int)P.ns;
+    check_facets(fn, "CP (slave facets)", nper, nfs, P.Fs, nn, X, pu);
+    check_facets(fn, "CP (master facets)", nper, nfm, P.Fm, nn, X, pu);
+    std::vector<double> x(X, X + 3 * nn);
+    for (long i = 0; i < 3 * nn; i++) x[i] += pu[i];
     ffc_tree *t = nullptr;
-    int st = ffc_tree_build(3, nfm, P.Fm, m.nv, x.data(), &t);
+    int st = ffc_tree_build(nper, nfm, P.Fm, nn, x.data(), &t);
     if (st) fail(fn, std::string("master surface: ") + ffc_strerror(st));
     const long nq = ffc_quad_size((int)qdeg), nl = nfs * nq;
     std::vector<ffc_link> links(nl);
     ffc_search_opts o = ffc_search_defaults();
     o.capture_rel = crel;
     o.capture_abs = cabs;
-    st = ffc_search(t, 3, nfs, P.Fs, m.nv, x.data(), (int)qdeg, &o, nl, links.data());
+    st = ffc_search(t, nper, nfs, P.Fs, nn, x.data(), (int)qdeg, &o, nl, links.data());
     ffc_tree_free(t);
     if (st < 0) fail(fn, ffc_strerror(st));
     L->resize(nl, L_COLS);
@@ -377,6 +493,10 @@ ffc_effects need_effects(const char *fn, long bits)
 // Everything a link-level call needs, checked.
 struct LinkCall {
     MeshArrays m;
+    P2Arrays p2;
+    bool quad = false;
+    long nn = 0;                 // nodes (vertices, or P2 nodes)
+    std::vector<double> uv;      // vertex displacements (P2: gathered for the volume check)
     const double *u = nullptr;
     long nfs = 0, nfm = 0, nl = 0;
     int qdeg = 0;
@@ -432,8 +552,10 @@ void need_links(const char *fn, pmesh3 pTh, KN<double> *u, KN<long> *CP,
 {
     const Mesh3 &Th = need_mesh(fn, pTh);
     mesh_arrays(Th, c.m);
-    c.u = need_disp(fn, u, c.m.nv);
-    PairView P = need_pair(fn, CP, c.m.nv);
+    PairView P = need_pair(fn, CP, c.m, c.p2);
+    c.quad = P.ns == 6;
+    c.nn = c.quad ? c.p2.nn : c.m.nv;
+    c.u = need_disp(fn, u, c.nn, c.quad);
     c.nfs = P.nfs;
     c.nfm = P.nfm;
     if (!L) fail(fn, "argument 'L': array is not defined");
@@ -451,11 +573,12 @@ void need_links(const char *fn, pmesh3 pTh, KN<double> *u, KN<long> *CP,
     }
     c.qdeg = degree_of(c.nl / c.nfs);
     if (!lam) fail(fn, "argument 'lambda': array is not defined");
-    const long nlam = o.law.nodal ? c.m.nv : c.nl;
+    const long nlam = o.law.nodal ? c.nn : c.nl;
     if (lam->N() != nlam) {
         std::ostringstream s;
         s << "argument 'lambda': size " << lam->N() << ", expected "
-          << (o.law.nodal ? "one multiplier per mesh vertex (nodal multipliers): " : "one multiplier per link: ") << nlam;
+          << (o.law.nodal ? (c.quad ? "one multiplier per P2 node (nodal multipliers): " : "one multiplier per mesh vertex (nodal multipliers): ")
+                          : "one multiplier per link: ") << nlam;
         fail(fn, s.str());
     }
     for (long k = 0; k < nlam; k++)
@@ -479,19 +602,27 @@ void need_links(const char *fn, pmesh3 pTh, KN<double> *u, KN<long> *CP,
             fail(fn, s.str());
         }
     }
-    check_surface(fn, "CP (slave facets)", c.nfs, P.Fs, c.m, c.u);
-    check_surface(fn, "CP (master facets)", c.nfm, P.Fm, c.m, c.u);
+    const double *X = c.quad ? c.p2.X2.data() : c.m.X.data();
+    check_facets(fn, "CP (slave facets)", (int)P.ns, c.nfs, P.Fs, c.nn, X, c.u);
+    check_facets(fn, "CP (master facets)", (int)P.ns, c.nfm, P.Fm, c.nn, X, c.u);
+    const double *uvert = c.u;
+    if (c.quad) {
+        c.uv.resize(3 * c.m.nv);
+        for (long v = 0; v < c.m.nv; v++)
+            for (int i = 0; i < 3; i++) c.uv[3 * v + i] = c.p2.vnode[v] >= 0 ? c.u[3 * c.p2.vnode[v] + i] : 0.0;
+        uvert = c.uv.data();
+    }
     long bad = -1;
-    if (ffc_volume_check(c.m.nt, c.m.T.data(), c.m.nv, c.m.X.data(), c.u, &bad) == FFC_ERR_INVERTED) {
+    if (ffc_volume_check(c.m.nt, c.m.T.data(), c.m.nv, c.m.X.data(), uvert, &bad) == FFC_ERR_INVERTED) {
         std::ostringstream s;
         s << "argument 'u': tetrahedron " << bad << " (vertices " << c.m.T[4 * bad] << ", " << c.m.T[4 * bad + 1]
           << ", " << c.m.T[4 * bad + 2] << ", " << c.m.T[4 * bad + 3]
           << ") is inverted or collapsed by the displacement: did Newton diverge?";
         fail(fn, s.str());
     }
-    c.pair.ns = 3; c.pair.nfs = c.nfs; c.pair.Fs = P.Fs;
-    c.pair.nm = 3; c.pair.nfm = c.nfm; c.pair.Fm = P.Fm;
-    c.pair.nv = c.m.nv; c.pair.X = c.m.X.data(); c.pair.u = c.u;
+    c.pair.ns = (int)P.ns; c.pair.nfs = c.nfs; c.pair.Fs = P.Fs;
+    c.pair.nm = (int)P.nm; c.pair.nfm = c.nfm; c.pair.Fm = P.Fm;
+    c.pair.nv = c.nn; c.pair.X = X; c.pair.u = c.u;
 }
 
 void link_error(const char *fn, int st, long bad)
@@ -515,16 +646,16 @@ long ffcAssemble(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
     const ffc_effects fx = o.fx;
     LinkCall c;
     need_links(fn, pTh, u, CP, L, lam, o, c);
-    const long n = 3 * c.m.nv;
+    const long n = 3 * c.nn;
     if (!R) fail(fn, "argument 'R': array is not defined");
     if (R->N() != n) {
         std::ostringstream s;
-        s << "argument 'R': size " << R->N() << ", expected 3*nv = " << n;
+        s << "argument 'R': size " << R->N() << ", expected " << n << " (the size of u)";
         fail(fn, s.str());
     }
     if (!K) fail(fn, "argument 'K': matrix is not defined");
     // triplet buffer: first guess from the links that look active, grown once if needed
-    const long nd2 = 18 * 18;
+    const long nd = 3 * (c.pair.ns + c.pair.nm), nd2 = nd * nd;
     long guess = 0;
     for (long k = 0; k < c.nl; k++)
         if (c.links[k].mf >= 0 && (c.links[k].gap < 0 || (o.law.nodal ? true : (*lam)[k] > 0))) guess++;
@@ -560,11 +691,11 @@ long ffcResidual(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
     Options o = need_options(fn, opt);
     LinkCall c;
     need_links(fn, pTh, u, CP, L, lam, o, c);
-    const long n = 3 * c.m.nv;
+    const long n = 3 * c.nn;
     if (!R) fail(fn, "argument 'R': array is not defined");
     if (R->N() != n) {
         std::ostringstream s;
-        s << "argument 'R': size " << R->N() << ", expected 3*nv = " << n;
+        s << "argument 'R': size " << R->N() << ", expected " << n << " (the size of u)";
         fail(fn, s.str());
     }
     std::vector<double> Rc(n, 0.0);
@@ -658,9 +789,19 @@ long ffcInverted(pmesh3 const &pTh, KN<double> *const &u)
     const Mesh3 &Th = need_mesh(fn, pTh);
     MeshArrays m;
     mesh_arrays(Th, m);
-    if (!u || u->N() != 3 * m.nv) fail(fn, "argument 'u': expected the 3*nv coefficients of a [P1,P1,P1] displacement");
+    if (!u) fail(fn, "argument 'u': array is not defined");
+    std::vector<double> uv(&(*u)[0], &(*u)[0] + u->N());
+    if (u->N() != 3 * m.nv) {   // a [P2,P2,P2] displacement: its vertex values
+        P2Arrays p2;
+        p2_arrays(fn, m, p2);
+        if (u->N() != 3 * p2.nn)
+            fail(fn, "argument 'u': expected the coefficients of a [P1,P1,P1] or [P2,P2,P2] displacement");
+        uv.assign(3 * m.nv, 0.0);
+        for (long v = 0; v < m.nv; v++)
+            for (int i = 0; i < 3; i++) uv[3 * v + i] = (*u)[3 * p2.vnode[v] + i];
+    }
     long bad = -1;
-    int st = ffc_volume_check(m.nt, m.T.data(), m.nv, m.X.data(), &(*u)[0], &bad);
+    int st = ffc_volume_check(m.nt, m.T.data(), m.nv, m.X.data(), uv.data(), &bad);
     return st == FFC_OK ? -1 : bad;
 }
 
@@ -682,6 +823,9 @@ static void init()
                new OneOperator3_<double, pmesh3, KN<long> *, KN<double> *>(ffcArea));
     Global.Add("ffcTime", "(", new OneOperator0<double>(ffcTime));
     Global.Add("ffcInverted", "(", new OneOperator2_<long, pmesh3, KN<double> *>(ffcInverted));
+    Global.Add("ffcPair2", "(",
+               new OneOperator4_<long, pmesh3, KN<long> *, KN<long> *, KN<long> *>(ffcPair2));
+    Global.Add("ffcP2Nodes", "(", new OneOperator2_<long, pmesh3, KN<double> *>(ffcP2Nodes));
     Global.Add("ffcPair", "(",
                new OneOperator4_<long, pmesh3, KN<long> *, KN<long> *, KN<long> *>(ffcPair));
     Global.Add("ffcSearch", "(",
