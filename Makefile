@@ -1,7 +1,7 @@
 # Makefile: builds the ffcontact C library, the FreeFEM plugin and the
 # meshes; runs case studies, tests and benchmarks.
 #   make            library + plugin
-#   make demo       set-up, build, Hertz case study end to end
+#   make demo       set-up, build, Hertz case study end to end (quadratic, h_c = 0.05)
 #   make test       set-up, build, whole test suite
 #   make run CASE=<name> ARGS="<options>"   one case study -> results/<name>.json
 
@@ -50,7 +50,7 @@ test: setup
 
 demo: setup
 	@$(MAKE) --no-print-directory all
-	@$(MAKE) --no-print-directory run CASE=hertz ARGS="$(ARGS)"
+	@$(MAKE) --no-print-directory run CASE=hertz ARGS="-DQUADRATIC=1 $(ARGS)"
 
 run: all
 	@test -n "$(CASE)" || { echo "usage: make run CASE=<name> ARGS=\"<options>\""; exit 2; }

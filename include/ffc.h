@@ -354,6 +354,13 @@ int ffc_points(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
  * cannot be written. */
 int ffc_points_vtk(const char *path, long n, const double P[]);
 
+/* Writes the rows k of the column-major table A[ncol*n] (column j holds
+ * A[j*n .. j*n + n-1]) whose mask[k] is non-zero (mask NULL: all rows) as
+ * whitespace-separated text, after a header line "# " + header;
+ * FFC_ERR_VALUE if the file cannot be written. */
+int ffc_write_columns(const char *path, const char *header, long n, int ncol,
+                      const double A[], const double mask[]);
+
 /* ------------------------------------------------- quadratic tetrahedra */
 /* Numbers the nodes of P2 tetrahedra T[nt*4] (nv vertices) as FreeFEM
  * numbers scalar P2 degrees of freedom: element by element, the 4 vertices

@@ -1,4 +1,5 @@
-/* ffc_io.c: file output of contact points (legacy VTK point cloud). */
+/* ffc_io.c: file output: contact points as a legacy-VTK point cloud and
+ * masked columns of numbers as text. */
 #include "ffc.h"
 
 #include <math.h>
@@ -25,6 +26,24 @@ int ffc_points_vtk(const char *path, long n, const double P[])
             double v = P[k * FFC_POINT_COLS + 3 + c];
             fprintf(f, "%.17g\n", isfinite(v) ? v : -1.0); /* no partner: gap -1 */
         }
+    }
+    int bad = ferror(f);
+    if (fclose(f) != 0 || bad) return FFC_ERR_VALUE;
+    return FFC_OK;
+}
+
+int ffc_write_columns(const char *path, const char *header, long n, int ncol,
+                      const double A[], const double mask[])
+{
+    if (!path || (n > 0 && !A)) return FFC_ERR_NULL;
+    if (n < 0 || ncol < 1) return FFC_ERR_SIZE;
+    FILE *f = fopen(path, "w");
+    if (!f) return FFC_ERR_VALUE;
+    if (header) fprintf(f, "# %s\n", header);
+    for (long k = 0; k < n; k++) {
+        if (mask && mask[k] == 0.0) continue;
+        for (int j = 0; j < ncol; j++) fprintf(f, j ? " %.10g" : "%.10g", A[(long)j * n + k]);
+        fputc('\n', f);
     }
     int bad = ferror(f);
     if (fclose(f) != 0 || bad) return FFC_ERR_VALUE;

@@ -781,6 +781,30 @@ long ffcSaveVTK(string *const &file, KNM<double> *const &P)
     return n;
 }
 
+// ffcWriteColumns(file, header, A, mask): the rows of the table A
+// (real[int,int], one column per quantity) whose mask is non-zero, as text
+// under "# header"; returns the number of rows written.
+long ffcWriteColumns(string *const &file, string *const &header, KNM<double> *const &A,
+                     KN<double> *const &mask)
+{
+    const char *fn = "ffcWriteColumns";
+    if (!file) fail(fn, "argument 'file': no file name");
+    if (!A || A->N() == 0) fail(fn, "argument 'A': empty table");
+    if (!mask || mask->N() != A->N()) fail(fn, "argument 'mask': one value per row of 'A' expected");
+    const long n = A->N();
+    const int m = (int)A->M();
+    std::vector<double> cols((size_t)n * m), msk(n);
+    long rows = 0;
+    for (long k = 0; k < n; k++) {
+        msk[k] = (*mask)[k];
+        rows += msk[k] != 0.0;
+        for (long j = 0; j < m; j++) cols[j * n + k] = (*A)(k, j);
+    }
+    int rc = ffc_write_columns(file->c_str(), header ? header->c_str() : nullptr, n, m, cols.data(), msk.data());
+    if (rc) fail(fn, "argument 'file': cannot write '" + *file + "': " + ffc_strerror(rc));
+    return rows;
+}
+
 // ffcInverted(Th, u): the first tetrahedron that X + u turns inside out or
 // collapses, or -1 (a query for line searches: no error).
 long ffcInverted(pmesh3 const &pTh, KN<double> *const &u)
@@ -844,6 +868,8 @@ static void init()
                new OneOperator7_<long, pmesh3, KN<double> *, KN<long> *, KNM<double> *, KN<double> *,
                                  KN<double> *, KNM<double> *>(ffcPoints));
     Global.Add("ffcSaveVTK", "(", new OneOperator2_<long, string *, KNM<double> *>(ffcSaveVTK));
+    Global.Add("ffcWriteColumns", "(",
+               new OneOperator4_<long, string *, string *, KNM<double> *, KN<double> *>(ffcWriteColumns));
     Global.Add("ffcNormals", "(",
                new OneOperator4_<long, pmesh3, KN<long> *, KN<double> *, KN<double> *>(ffcNormals));
 }
