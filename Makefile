@@ -45,7 +45,7 @@ setup:
 	@sh scripts/setup.sh
 
 test: setup
-	@$(MAKE) --no-print-directory all ctest
+	@$(MAKE) --no-print-directory all ctest asan-build
 	@sh tests/run.sh
 
 demo: setup
@@ -76,3 +76,31 @@ $(B)/bench_search: tests/bench/bench_search.c $(B)/libffc.a
 bench-search: $(B)/bench_search
 	@sh tests/bench/bench_search.sh
 bench: bench-search
+
+# sanitizers and fuzzing (clang from Debian)
+ASAN := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
+$(B)/asan/libffc.a: $(CSRC) $(HDRS)
+	@mkdir -p $(B)/asan
+	cd $(B)/asan && for f in $(CSRC); do clang -std=c11 -Wall -Wextra -Werror -I$(CURDIR)/include $(ASAN) -c $(CURDIR)/$$f || exit 1; done
+	ar rcs $@ $(B)/asan/*.o
+$(B)/asan/test_%: tests/c/test_%.c tests/c/ffc_test.h $(B)/asan/libffc.a
+	clang -std=c11 -Wall -Wextra -Iinclude -Itests/c $(ASAN) $< $(B)/asan/libffc.a -lcmocka -lm -o $@
+$(B)/fuzz/%: tests/fuzz/%.c $(B)/asan/libffc.a
+	@mkdir -p $(B)/fuzz
+	clang -std=c11 -Iinclude -g -O1 -fsanitize=fuzzer,address,undefined $< $(B)/asan/libffc.a -lm -o $@
+
+ASAN_TESTS := $(patsubst tests/c/%.c,$(B)/asan/%,$(wildcard tests/c/test_*.c))
+FUZZ := $(patsubst tests/fuzz/%.c,$(B)/fuzz/%,$(wildcard tests/fuzz/fuzz_*.c))
+FUZZ_SECONDS ?= 300
+
+.PHONY: test-asan fuzz asan-build
+asan-build: $(ASAN_TESTS) $(FUZZ)
+test-asan: setup
+	@$(MAKE) --no-print-directory asan-build
+	@sh tests/run.sh asan
+# longer fuzzing by hand: make fuzz FUZZ_SECONDS=3600
+fuzz: $(FUZZ)
+	@for f in $(FUZZ); do mkdir -p build/fuzz/corpus-$$(basename $$f); \
+	  $$f -max_total_time=$(FUZZ_SECONDS) build/fuzz/corpus-$$(basename $$f) tests/fuzz/regress || exit 1; done
+# a crash input found by fuzzing becomes a regression test: copy it into
+# tests/fuzz/regress/ (every run of make test replays that folder)

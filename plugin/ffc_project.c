@@ -159,12 +159,16 @@ int ffc__project_free(int nn, const double X[][3], const double p[3], ffc_proj *
         t1[i] = X[2][i] - X[0][i];
         r0[i] = p[i] - X[0][i];
     }
-    const double m00 = ffc__dot(t0, t0), m01 = ffc__dot(t0, t1), m11 = ffc__dot(t1, t1);
-    const double det = m00 * m11 - m01 * m01;
+    /* with c = t0 x t1: xi = ((r0 x t1) . c, (t0 x r0) . c) / |c|^2, free
+     * of the cancellation in m00 m11 - m01^2 for slivers */
+    double c[3], a[3], b[3];
+    ffc__cross(t0, t1, c);
+    const double det = ffc__dot(c, c);
     const double h2 = ffc__facet_size2(X);
     if (!(det > FFC__DEGEN_REL * FFC__DEGEN_REL * h2 * h2)) return FFC_ERR_DEGENERATE;
-    const double b0 = ffc__dot(t0, r0), b1 = ffc__dot(t1, r0);
-    double xi[2] = {(m11 * b0 - m01 * b1) / det, (m00 * b1 - m01 * b0) / det};
+    ffc__cross(r0, t1, a);
+    ffc__cross(t0, r0, b);
+    double xi[2] = {ffc__dot(a, c) / det, ffc__dot(b, c) / det};
     out->iters = 0;
     if (nn == 6) {
         int st = newton_free(nn, X, p, xi, &out->iters, h2);

@@ -24,6 +24,40 @@ for t in build/tests/test_*; do
     [ "$f" -gt 0 ] && report "$t"
 done
 
+# the same C tests under AddressSanitizer and UndefinedBehaviorSanitizer
+for t in build/asan/test_*; do
+    [ -x "$t" ] || continue
+    case "asan $t" in *"$pat"*) ;; *) continue ;; esac
+    "$t" >"$log" 2>&1
+    rc=$?
+    p=$(sed -n 's/.*\[  PASSED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)
+    f=$(sed -n 's/.*\[  FAILED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)
+    p=${p:-0}; f=${f:-0}
+    if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then f=1; fi
+    pass=$((pass + p)); fail=$((fail + f))
+    [ "$f" -gt 0 ] && report "$t (sanitizers)"
+done
+
+# fuzzing for a bounded time (FUZZ_TEST_SECONDS each; longer: make fuzz)
+for t in build/fuzz/fuzz_*; do
+    [ -x "$t" ] || continue
+    case "fuzz $t" in *"$pat"*) ;; *) continue ;; esac
+    corpus=build/fuzz/corpus-$(basename "$t")
+    mkdir -p "$corpus"
+    if "$t" -max_total_time="${FUZZ_TEST_SECONDS:-15}" "$corpus" tests/fuzz/regress >"$log" 2>&1; then
+        pass=$((pass + 1))
+    else
+        fail=$((fail + 1)); report "$t (fuzzing found a failure; the input is saved as crash-*)"
+    fi
+done
+
+# the plugin under valgrind memcheck
+case "valgrind" in *"$pat"*)
+    if command -v valgrind >/dev/null 2>&1; then
+        if sh tests/valgrind.sh >"$log" 2>&1; then pass=$((pass + 1)); else fail=$((fail + 1)); report "tests/valgrind.sh"; fi
+    fi ;;
+esac
+
 for t in tests/edp/test_*.edp tests/hard/*.edp; do
     [ -f "$t" ] || continue
     case "$t" in *"$pat"*) ;; *) continue ;; esac
