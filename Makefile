@@ -104,3 +104,10 @@ fuzz: $(FUZZ)
 	  $$f -max_total_time=$(FUZZ_SECONDS) build/fuzz/corpus-$$(basename $$f) tests/fuzz/regress || exit 1; done
 # a crash input found by fuzzing becomes a regression test: copy it into
 # tests/fuzz/regress/ (every run of make test replays that folder)
+
+# what accuracy costs in time (README "What accuracy costs")
+.PHONY: study study-quick
+study: all
+	@sh scripts/study.sh full
+study-quick: all
+	@sh scripts/study.sh quick
