@@ -221,6 +221,7 @@ static int check_lambda(const ffc_pair *P, const ffc_law *law, long nl, const do
  * Its derivative:
  *     K = -sum_q t_q (da_q D_q + G_q dda_q^T)               (geometric)
  *       + sum_a (eps H(t_a) / W_a) B_a C_a^T                 (material)
+ * with H(t_a) = 1 when lambda_a - eps g~_a >= 0 (touching counts).
  *     B_a = sum_q N_a(q) da_q G_q,
  *     C_a = sum_q N_a(q) (da_q G_q + (g_q - g~_a) dda_q)   (= dG_a - g~_a dW_a).
  * The Uzawa update lambda_a <- t_a has the fixed point g~_a = 0 where
@@ -241,6 +242,11 @@ typedef struct {
     nlink_t *L;      /* [n] */
     double *Gn, *Wn; /* [nv] weighted gap sums and weights per node */
     double *tn;      /* [nv] nodal pressures */
+    unsigned char *on; /* [nv] 1 when lambda_a - eps g~_a >= 0: the node touches
+                          and its stiffness enters the tangent (a node at
+                          exactly zero gap and zero multiplier included, so
+                          that a body held only by contact is not singular
+                          at the first iteration) */
 } nodal_t;
 
 static void nodal_free(nodal_t *w)
@@ -249,6 +255,7 @@ static void nodal_free(nodal_t *w)
     free(w->Gn);
     free(w->Wn);
     free(w->tn);
+    free(w->on);
 }
 
 /* pass 1: geometry of every linked point, nodal sums and pressures */
@@ -263,7 +270,8 @@ static int nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double 
     w->Gn = calloc((size_t)P->nv, sizeof *w->Gn);
     w->Wn = calloc((size_t)P->nv, sizeof *w->Wn);
     w->tn = calloc((size_t)P->nv, sizeof *w->tn);
-    if (!w->L || !w->Gn || !w->Wn || !w->tn) { nodal_free(w); return FFC_ERR_MEMORY; }
+    w->on = calloc((size_t)P->nv, 1);
+    if (!w->L || !w->Gn || !w->Wn || !w->tn || !w->on) { nodal_free(w); return FFC_ERR_MEMORY; }
     for (long k = 0; k < nl; k++) {
         const ffc_link *lk = &links[k];
         if (lk->mf < 0) continue;
@@ -310,7 +318,9 @@ static int nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double 
     for (long v = 0; v < P->nv; v++)
         if (w->Wn[v] > 0.0) {
             double g = w->Gn[v] / w->Wn[v];
-            w->tn[v] = fmax(0.0, lambda[v] - eps * g);
+            const double trial = lambda[v] - eps * g;
+            w->tn[v] = fmax(0.0, trial);
+            w->on[v] = trial >= 0.0;
             if (stats && w->tn[v] > 0.0 && -g > stats->max_pen_node) stats->max_pen_node = -g;
         }
     return FFC_OK;
@@ -406,7 +416,7 @@ static int assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double
         }
         for (long i = 0; i < 3 * nv; i++) pos[i] = -1;
         for (long v = 0; v < nv; v++) {
-            if (!(w.tn[v] > 0.0) || !(w.Wn[v] > 0.0)) continue;
+            if (!w.on[v] || !(w.Wn[v] > 0.0)) continue;
             const double gt = w.Gn[v] / w.Wn[v], c = eps / w.Wn[v];
             long nloc = 0;
             for (long m = start[v]; m < start[v + 1]; m++) {
