@@ -220,14 +220,9 @@ long ffcSurface(pmesh3 const &pTh, KN<long> *const &labs, KN<long> *const &F)
     return select_surface(fn, "labs", Th, labs, F);
 }
 
-// ffcPair(Th, slaveLabs, masterLabs, CP): the contact pair descriptor
-// [3, nfs, 3, nfm, slave facets, master facets]; returns nfs.
-long ffcPair(pmesh3 const &pTh, KN<long> *const &sl, KN<long> *const &ml, KN<long> *const &CP)
+// Slave and master label lists: non-empty, disjoint.
+void need_pair_labels(const char *fn, KN<long> *sl, KN<long> *ml)
 {
-    const char *fn = "ffcPair";
-    if (!CP) fail(fn, "argument 'CP': array is not defined");
-    KN<long> Fs(1), Fm(1);
-    const Mesh3 &Th = need_mesh(fn, pTh);
     if (!sl || sl->N() == 0) fail(fn, "argument 'slaveLabs': empty list of labels");
     if (!ml || ml->N() == 0) fail(fn, "argument 'masterLabs': empty list of labels");
     for (long i = 0; i < sl->N(); i++)
@@ -237,6 +232,17 @@ long ffcPair(pmesh3 const &pTh, KN<long> *const &sl, KN<long> *const &ml, KN<lon
                 s << "label " << (*sl)[i] << " is in both 'slaveLabs' and 'masterLabs'";
                 fail(fn, s.str());
             }
+}
+
+// ffcPair(Th, slaveLabs, masterLabs, CP): the contact pair descriptor
+// [3, nfs, 3, nfm, slave facets, master facets]; returns nfs.
+long ffcPair(pmesh3 const &pTh, KN<long> *const &sl, KN<long> *const &ml, KN<long> *const &CP)
+{
+    const char *fn = "ffcPair";
+    if (!CP) fail(fn, "argument 'CP': array is not defined");
+    KN<long> Fs(1), Fm(1);
+    const Mesh3 &Th = need_mesh(fn, pTh);
+    need_pair_labels(fn, sl, ml);
     long nfs = select_surface(fn, "slaveLabs", Th, sl, &Fs);
     long nfm = select_surface(fn, "masterLabs", Th, ml, &Fm);
     CP->resize(CP_HEAD + 3 * nfs + 3 * nfm);
@@ -255,15 +261,7 @@ long ffcPair2(pmesh3 const &pTh, KN<long> *const &sl, KN<long> *const &ml, KN<lo
     if (!CP) fail(fn, "argument 'CP': array is not defined");
     KN<long> F3s(1), F3m(1);
     const Mesh3 &Th = need_mesh(fn, pTh);
-    if (!sl || sl->N() == 0) fail(fn, "argument 'slaveLabs': empty list of labels");
-    if (!ml || ml->N() == 0) fail(fn, "argument 'masterLabs': empty list of labels");
-    for (long i = 0; i < sl->N(); i++)
-        for (long j = 0; j < ml->N(); j++)
-            if ((*sl)[i] == (*ml)[j]) {
-                std::ostringstream s;
-                s << "label " << (*sl)[i] << " is in both 'slaveLabs' and 'masterLabs'";
-                fail(fn, s.str());
-            }
+    need_pair_labels(fn, sl, ml);
     long nfs = select_surface(fn, "slaveLabs", Th, sl, &F3s);
     long nfm = select_surface(fn, "masterLabs", Th, ml, &F3m);
     MeshArrays m;

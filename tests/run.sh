@@ -11,31 +11,30 @@ pass=0; fail=0
 log=$(mktemp)
 report() { echo "FAIL: $1"; sed 's/^/    /' "$log" | tail -40; }
 
-for t in build/tests/test_*; do
-    [ -x "$t" ] || continue
-    case "$t" in *"$pat"*) ;; *) continue ;; esac
-    "$t" >"$log" 2>&1
-    rc=$?
-    p=$(sed -n 's/.*\[  PASSED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)
-    f=$(sed -n 's/.*\[  FAILED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)
-    p=${p:-0}; f=${f:-0}
-    if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then f=1; fi   # crashed
-    pass=$((pass + p)); fail=$((fail + f))
-    [ "$f" -gt 0 ] && report "$t"
-done
-
-# the same C tests under AddressSanitizer and UndefinedBehaviorSanitizer
-for t in build/asan/test_*; do
-    [ -x "$t" ] || continue
-    case "asan $t" in *"$pat"*) ;; *) continue ;; esac
-    "$t" >"$log" 2>&1
+# a cmocka binary: counts its passed and failed tests (a crash counts one)
+cmocka() {   # cmocka <binary> <what>
+    "$1" >"$log" 2>&1
     rc=$?
     p=$(sed -n 's/.*\[  PASSED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)
     f=$(sed -n 's/.*\[  FAILED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)
     p=${p:-0}; f=${f:-0}
     if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then f=1; fi
     pass=$((pass + p)); fail=$((fail + f))
-    [ "$f" -gt 0 ] && report "$t (sanitizers)"
+    [ "$f" -gt 0 ] && report "$1 ($2)"
+    return 0
+}
+
+for t in build/tests/test_*; do
+    [ -x "$t" ] || continue
+    case "$t" in *"$pat"*) ;; *) continue ;; esac
+    cmocka "$t" "C unit tests"
+done
+
+# the same C tests under AddressSanitizer and UndefinedBehaviorSanitizer
+for t in build/asan/test_*; do
+    [ -x "$t" ] || continue
+    case "asan $t" in *"$pat"*) ;; *) continue ;; esac
+    cmocka "$t" "sanitizers"
 done
 
 # fuzzing for a bounded time (FUZZ_TEST_SECONDS each; longer: make fuzz)
