@@ -172,10 +172,15 @@ static void stats_add(ffc_stats *s, const ffc_link_state *st)
     for (int i = 0; i < 3; i++) s->force[i] += st->tn * st->da * st->n[i];
 }
 
+/* The checks every call over all links shares: pair, law, quadrature rule
+ * (its weights into qw, point count *nq), link count, slave node indices,
+ * and finite multipliers (lambda[nv] nodal, lambda[nl] per link; *bad =
+ * the index of a non-finite one). */
 static int common_checks(const ffc_effects *fx, const ffc_pair *P, int qdeg, long nl,
-                         const ffc_link links[], const ffc_law *law, double qw[16], int *nq)
+                         const ffc_link links[], const ffc_law *law, const double lambda[],
+                         double qw[16], int *nq, long *bad)
 {
-    if (!fx || !links || !law) return FFC_ERR_NULL;
+    if (!fx || !links || !law || !lambda) return FFC_ERR_NULL;
     int s = check_pair(P);
     if (s) return s;
     if (!(law->eps_n > 0) || isinf(law->eps_n) || (law->nodal != 0 && law->nodal != 1) ||
@@ -187,23 +192,6 @@ static int common_checks(const ffc_effects *fx, const ffc_pair *P, int qdeg, lon
     if (nl != P->nfs * *nq) return FFC_ERR_SIZE;
     for (long k = 0; k < P->nfs * P->ns; k++)
         if (P->Fs[k] < 0 || P->Fs[k] >= P->nv) return FFC_ERR_INDEX;
-    return FFC_OK;
-}
-
-/* the multiplier at link k: its own, or interpolated from the slave nodes */
-static double link_lambda(const ffc_pair *P, const ffc_law *law, const ffc_link *lk,
-                          const double lambda[], long k)
-{
-    if (!law->nodal) return lambda[k];
-    double N[FFC_MAXNODES], l = 0.0;
-    ffc_shape(P->ns, lk->xs, N, NULL);
-    for (int a = 0; a < P->ns; a++) l += N[a] * lambda[P->Fs[lk->sf * P->ns + a]];
-    return l;
-}
-
-/* every multiplier finite; *bad = its index otherwise */
-static int check_lambda(const ffc_pair *P, const ffc_law *law, long nl, const double lambda[], long *bad)
-{
     const long n = law->nodal ? P->nv : nl;
     for (long k = 0; k < n; k++)
         if (!isfinite(lambda[k])) { *bad = k; return FFC_ERR_NONFINITE; }
@@ -454,10 +442,9 @@ int ffc_assemble(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
     *bad = -1;
     double qw[16];
     int nq;
-    int s = common_checks(effects, pair, qdeg, nl, links, law, qw, &nq);
+    int s = common_checks(effects, pair, qdeg, nl, links, law, lambda, qw, &nq, bad);
     if (s) return s;
-    if (!lambda || !R || !ntrip) return FFC_ERR_NULL;
-    if ((s = check_lambda(pair, law, nl, lambda, bad))) return s;
+    if (!R || !ntrip) return FFC_ERR_NULL;
     const double eps = law->eps_n;
     const int want_k = Ti && Tj && Tv;
     ffc_stats loc;
@@ -474,7 +461,7 @@ int ffc_assemble(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
         if (links[k].mf < 0) continue;
         ffc_link_state st;
         int nd;
-        s = eval_link(effects, pair, qw, nq, &links[k], link_lambda(pair, law, &links[k], lambda, k), eps, &st, Rl,
+        s = eval_link(effects, pair, qw, nq, &links[k], lambda[k], eps, &st, Rl,
                       want_k ? Kl : NULL, dof, &nd);
         if (s) { *bad = k; return s; }
         stats_add(stats, &st);
@@ -507,10 +494,8 @@ int ffc_augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
     *bad = -1;
     double qw[16];
     int nq;
-    int s = common_checks(effects, pair, qdeg, nl, links, law, qw, &nq);
+    int s = common_checks(effects, pair, qdeg, nl, links, law, lambda, qw, &nq, bad);
     if (s) return s;
-    if (!lambda) return FFC_ERR_NULL;
-    if ((s = check_lambda(pair, law, nl, lambda, bad))) return s;
     const double eps = law->eps_n;
     ffc_stats loc;
     if (!stats) stats = &loc;
@@ -564,10 +549,9 @@ int ffc_points(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
     *bad = -1;
     double qw[16];
     int nq;
-    int s = common_checks(effects, pair, qdeg, nl, links, law, qw, &nq);
+    int s = common_checks(effects, pair, qdeg, nl, links, law, lambda, qw, &nq, bad);
     if (s) return s;
-    if (!lambda || !P) return FFC_ERR_NULL;
-    if ((s = check_lambda(pair, law, nl, lambda, bad))) return s;
+    if (!P) return FFC_ERR_NULL;
     const double eps = law->eps_n;
     double Rl[FFC_MAXDOF];
     long dof[FFC_MAXDOF];

@@ -35,6 +35,25 @@ static double dist2(const double a[3], const double b[3])
     return ffc__dot(d, d);
 }
 
+/* The foot at xi: local coordinates, position, normal, gap and distance
+ * of the projection record. */
+static int set_foot(int nn, const double X[][3], const double p[3], const double xi[2], ffc_proj *out)
+{
+    ffc_point g;
+    int st = ffc_facet_point(nn, X, xi, &g);
+    if (st) return st;
+    out->xi[0] = xi[0];
+    out->xi[1] = xi[1];
+    double r[3] = {p[0] - g.x[0], p[1] - g.x[1], p[2] - g.x[2]};
+    for (int i = 0; i < 3; i++) {
+        out->x[i] = g.x[i];
+        out->n[i] = g.n[i];
+    }
+    out->gap = ffc__dot(g.n, r);
+    out->dist = sqrt(ffc__dot(r, r));
+    return FFC_OK;
+}
+
 /* Unconstrained stationary point of |p - x(xi)|^2 / 2 for a curved facet,
  * started at xi; Newton with the full Hessian when it is positive definite,
  * Gauss-Newton otherwise, and a backtracking line search. */
@@ -174,20 +193,10 @@ int ffc__project_free(int nn, const double X[][3], const double p[3], ffc_proj *
         int st = newton_free(nn, X, p, xi, &out->iters, h2);
         if (st) return st;
     }
-    out->xi[0] = out->xi_free[0] = xi[0];
-    out->xi[1] = out->xi_free[1] = xi[1];
+    out->xi_free[0] = xi[0];
+    out->xi_free[1] = xi[1];
     out->where = FFC_FOOT_INSIDE;
-    ffc_point g;
-    int st = ffc_facet_point(nn, X, xi, &g);
-    if (st) return st;
-    double r[3] = {p[0] - g.x[0], p[1] - g.x[1], p[2] - g.x[2]};
-    for (int i = 0; i < 3; i++) {
-        out->x[i] = g.x[i];
-        out->n[i] = g.n[i];
-    }
-    out->gap = ffc__dot(g.n, r);
-    out->dist = sqrt(ffc__dot(r, r));
-    return FFC_OK;
+    return set_foot(nn, X, p, xi, out);
 }
 
 int ffc_project(int nn, const double X[][3], const double p[3], ffc_proj *out)
@@ -222,19 +231,8 @@ int ffc_project(int nn, const double X[][3], const double p[3], ffc_proj *out)
             xi[1] = A[1] + bs * (B[1] - A[1]);
         }
     }
-    out->xi[0] = xi[0];
-    out->xi[1] = xi[1];
-    ffc_point g;
-    int st = ffc_facet_point(nn, X, xi, &g);
-    if (st) return st;
-    double r[3] = {p[0] - g.x[0], p[1] - g.x[1], p[2] - g.x[2]};
-    for (int i = 0; i < 3; i++) {
-        out->x[i] = g.x[i];
-        out->n[i] = g.n[i];
-    }
-    out->gap = ffc__dot(g.n, r);
-    out->dist = sqrt(ffc__dot(r, r));
-    return status;
+    int st = set_foot(nn, X, p, xi, out);
+    return st ? st : status;
 }
 
 /* Formulation: the foot xi of p on the master facet solves

@@ -160,23 +160,37 @@ long need_facets(const char *fn, const char *arg, KN<long> *F, long nv)
     return F->N() / 3;
 }
 
-void check_surface(const char *fn, const char *arg, long nf, const long *F,
-                   const MeshArrays &m, const double *u)
+// Facets F[nf*nper] against nodes at X + u (u may be NULL): indices,
+// finite positions, non-degenerate facets; nper = 3: mesh vertices, 6: P2 nodes.
+void check_facets(const char *fn, const char *arg, int nper, long nf, const long *F, long nnodes,
+                  const double *X, const double *u)
 {
     long bad = -1;
-    int st = ffc_surface_check(3, nf, F, m.nv, m.X.data(), u, &bad);
+    int st = ffc_surface_check(nper, nf, F, nnodes, X, u, &bad);
     if (st == FFC_OK) return;
+    const char *node = nper == 3 ? "vertex" : "node";
     std::ostringstream s;
     s << "argument '" << arg << "': ";
     if (st == FFC_ERR_NONFINITE)
-        s << "vertex " << bad << " has a non-finite position";
-    else if (st == FFC_ERR_DEGENERATE)
-        s << "facet " << bad << " (vertices " << F[3 * bad] << ", " << F[3 * bad + 1]
-          << ", " << F[3 * bad + 2] << ") is degenerate: zero area";
-
-    else
+        s << node << " " << bad << " has a non-finite position";
+    else if (st == FFC_ERR_DEGENERATE) {
+        s << "facet " << bad << " (" << (nper == 3 ? "vertices" : "nodes");
+        for (int a = 0; a < nper; a++) s << (a ? ", " : " ") << F[nper * bad + a];
+        s << ") is degenerate: zero area";
+    } else
         s << "facet " << bad << ": " << ffc_strerror(st);
     fail(fn, s.str());
+}
+
+// An output vector (argument `arg`) of the size of u: n values.
+void need_size(const char *fn, const char *arg, KN<double> *R, long n)
+{
+    if (!R) fail(fn, std::string("argument '") + arg + "': array is not defined");
+    if (R->N() != n) {
+        std::ostringstream s;
+        s << "argument '" << arg << "': size " << R->N() << ", expected " << n << " (the size of u)";
+        fail(fn, s.str());
+    }
 }
 
 // The boundary facets of Th whose label is in labs (argument `arg`),
@@ -320,7 +334,7 @@ double ffcArea(pmesh3 const &pTh, KN<long> *const &F, KN<double> *const &u)
     long nf = need_facets(fn, "F", F, m.nv);
     const double *pu = need_disp(fn, u, m.nv);
     const long *pF = &(*F)[0];
-    check_surface(fn, "F", nf, pF, m, pu);
+    check_facets(fn, "F", 3, nf, pF, m.nv, m.X.data(), pu);
     double A = 0.0;
     int st = ffc_surface_area(3, nf, pF, m.nv, m.X.data(), pu, 2, &A);
     if (st) fail(fn, ffc_strerror(st));
@@ -340,7 +354,7 @@ long ffcNormals(pmesh3 const &pTh, KN<long> *const &F, KN<double> *const &u,
     long nf = need_facets(fn, "F", F, m.nv);
     const double *pu = need_disp(fn, u, m.nv);
     const long *pF = &(*F)[0];
-    check_surface(fn, "F", nf, pF, m, pu);
+    check_facets(fn, "F", 3, nf, pF, m.nv, m.X.data(), pu);
     std::vector<double> out(3 * nf);
     long bad = -1;
     int st = ffc_surface_normals(3, nf, pF, m.nv, m.X.data(), pu, out.data(), &bad);
@@ -348,25 +362,6 @@ long ffcNormals(pmesh3 const &pTh, KN<long> *const &F, KN<double> *const &u,
     N->resize(3 * nf);
     for (long i = 0; i < 3 * nf; i++) (*N)[i] = out[i];
     return nf;
-}
-
-// Facets F[nf*nper] of a pair against nodes at X + u: indices, finite
-// positions, non-degenerate facets.
-void check_facets(const char *fn, const char *arg, int nper, long nf, const long *F, long nnodes,
-                  const double *X, const double *u)
-{
-    long bad = -1;
-    int st = ffc_surface_check(nper, nf, F, nnodes, X, u, &bad);
-    if (st == FFC_OK) return;
-    std::ostringstream s;
-    s << "argument '" << arg << "': ";
-    if (st == FFC_ERR_NONFINITE)
-        s << "node " << bad << " has a non-finite position";
-    else if (st == FFC_ERR_DEGENERATE)
-        s << "facet " << bad << " is degenerate: zero area";
-    else
-        s << "facet " << bad << ": " << ffc_strerror(st);
-    fail(fn, s.str());
 }
 
 // A contact pair descriptor CP (int[int]): [ns, nfs, nm, nfm, Fs (ns*nfs), Fm (nm*nfm)]
@@ -507,7 +502,6 @@ struct LinkCall {
 // quadrature points, lambda[nlinks]), tangent (0: consistent, default;
 // 1: material part only, positive semi-definite)].
 struct Options {
-    double eps;
     ffc_effects fx;
     ffc_law law;
 };
@@ -521,13 +515,12 @@ Options need_options(const char *fn, KN<double> *opt)
         fail(fn, s.str());
     }
     Options o;
-    o.eps = (*opt)[0];
-    if (!(o.eps > 0) || std::isinf(o.eps))
-        fail(fn, "argument 'opt': penalty epsN = opt[0] = " + num(o.eps) + " must be finite and > 0");
+    o.law.eps_n = (*opt)[0];
+    if (!(o.law.eps_n > 0) || std::isinf(o.law.eps_n))
+        fail(fn, "argument 'opt': penalty epsN = opt[0] = " + num(o.law.eps_n) + " must be finite and > 0");
     double b = (*opt)[1];
     if (!(b == std::floor(b))) fail(fn, "argument 'opt': effects = opt[1] = " + num(b) + " is not a set of bits");
     o.fx = need_effects(fn, (long)b);
-    o.law.eps_n = o.eps;
     o.law.nodal = 1;
     if (opt->N() >= 3) {
         double m = (*opt)[2];
@@ -641,16 +634,10 @@ long ffcAssemble(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
 {
     const char *fn = "ffcAssemble";
     Options o = need_options(fn, opt);
-    const ffc_effects fx = o.fx;
     LinkCall c;
     need_links(fn, pTh, u, CP, L, lam, o, c);
     const long n = 3 * c.nn;
-    if (!R) fail(fn, "argument 'R': array is not defined");
-    if (R->N() != n) {
-        std::ostringstream s;
-        s << "argument 'R': size " << R->N() << ", expected " << n << " (the size of u)";
-        fail(fn, s.str());
-    }
+    need_size(fn, "R", R, n);
     if (!K) fail(fn, "argument 'K': matrix is not defined");
     // triplet buffer: first guess from the links that look active, grown once if needed
     const long nd = 3 * (c.pair.ns + c.pair.nm), nd2 = nd * nd;
@@ -665,7 +652,7 @@ long ffcAssemble(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
     for (int attempt = 0; attempt < 2; attempt++) {
         Ti.resize(cap); Tj.resize(cap); Tv.resize(cap);
         std::fill(Rc.begin(), Rc.end(), 0.0);
-        rc = ffc_assemble(&fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], &o.law, Rc.data(),
+        rc = ffc_assemble(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], &o.law, Rc.data(),
                           cap, Ti.data(), Tj.data(), Tv.data(), &nt, &st, &bad);
         if (rc != FFC_ERR_CAPACITY) break;
         cap = nt;
@@ -690,12 +677,7 @@ long ffcResidual(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
     LinkCall c;
     need_links(fn, pTh, u, CP, L, lam, o, c);
     const long n = 3 * c.nn;
-    if (!R) fail(fn, "argument 'R': array is not defined");
-    if (R->N() != n) {
-        std::ostringstream s;
-        s << "argument 'R': size " << R->N() << ", expected " << n << " (the size of u)";
-        fail(fn, s.str());
-    }
+    need_size(fn, "R", R, n);
     std::vector<double> Rc(n, 0.0);
     ffc_stats st;
     long nt = 0, bad = -1;
@@ -724,14 +706,13 @@ long ffcAugment(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
 {
     const char *fn = "ffcAugment";
     Options o = need_options(fn, opt);
-    const ffc_effects fx = o.fx;
     LinkCall c;
     need_links(fn, pTh, u, CP, L, lam, o, c);
     if (!S) fail(fn, "argument 'S': array is not defined");
     std::vector<double> l(&(*lam)[0], &(*lam)[0] + lam->N());
     ffc_stats st;
     long bad = -1;
-    int rc = ffc_augment(&fx, &c.pair, c.qdeg, c.nl, c.links.data(), l.data(), &o.law, &st, &bad);
+    int rc = ffc_augment(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), l.data(), &o.law, &st, &bad);
     if (rc) link_error(fn, rc, bad);
     for (long k = 0; k < lam->N(); k++) (*lam)[k] = l[k];
     stats_out(st, S);
@@ -746,13 +727,12 @@ long ffcPoints(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
 {
     const char *fn = "ffcPoints";
     Options o = need_options(fn, opt);
-    const ffc_effects fx = o.fx;
     LinkCall c;
     need_links(fn, pTh, u, CP, L, lam, o, c);
     if (!P) fail(fn, "argument 'P': array is not defined");
     std::vector<double> out(c.nl * FFC_POINT_COLS);
     long bad = -1;
-    int rc = ffc_points(&fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], &o.law, out.data(), &bad);
+    int rc = ffc_points(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], &o.law, out.data(), &bad);
     if (rc) link_error(fn, rc, bad);
     P->resize(c.nl, FFC_POINT_COLS);
     long active = 0;
