@@ -263,6 +263,11 @@ typedef struct {
     double tn;         /* contact pressure t_N (force/length^2) */
     double da;         /* w * area element: the point's area (length^2) */
     int active;        /* 1 when lambda_N - eps_N g > 0 */
+    double slip[3];    /* friction: relative motion r of the slave point over
+                          the master since the last converged step (length) */
+    double t[3];       /* friction: tangential traction T resisting the slip;
+                          the slave is pushed by -T (force/length^2) */
+    int fstate;        /* friction: FFC_FRIC_OPEN, _STICK or _SLIP */
 } ffc_link_state;
 
 /* Residual and tangent of one link: slave facet Xs[ns][3] (current
@@ -293,9 +298,11 @@ typedef struct {
     long nv;           /* nodes */
     const double *X;   /* [nv*3] reference positions (length) */
     const double *u;   /* [nv*3] displacements (length) */
+    const double *u_prev; /* [nv*3] displacements at the last converged step
+                          (length); read only when friction is on */
 } ffc_pair;
 
-/* The normal contact law and where its multipliers live. */
+/* The contact law and where its multipliers live. */
 typedef struct {
     double eps_n;      /* penalty (force/length^3), > 0 */
     int nodal;         /* 1: one multiplier per slave node, lambda[nv]; the
@@ -311,7 +318,55 @@ typedef struct {
                           the normal, the foot and the area): positive
                           semi-definite, for a descent direction when the
                           consistent tangent is indefinite; 0: consistent */
+    double mu;         /* Coulomb coefficient (1), >= 0; read only when
+                          effects->friction (mu = 0 then skips all friction work) */
+    double eps_t;      /* tangential penalty (force/length^3), > 0 when friction */
 } ffc_law;
+
+/* ------------------------------------------------------ Coulomb friction */
+/* Formulation (quasi-static, incremental).  At a slave point, the slip r
+ * is the relative motion of the slave point over the master material
+ * point under it since the last converged step,
+ *     r = sum_a N1_a (x_a - x_a^n) - sum_b N2_b(xi) (x_b - x_b^n),
+ * (the seed's velocity form uses r = dt v_rel: the same law with the
+ * increment written as a rate).  With the tangential multiplier lambda_T
+ * (a 3-vector in the tangent plane), the trial traction is
+ *     T_tr = P (lambda_T + eps_T r),   P = I - n n^T,
+ * whose Euclidean norm equals the metric norm sqrt(t_a m^ab t_b) of its
+ * covariant components.  Return map: stick when |T_tr| < mu t_N (T =
+ * T_tr), slip otherwise (T = mu t_N T_tr / |T_tr|), with the current
+ * t_N so that the slip bound is linearized with it.  T resists the slip:
+ * the slave is pushed by -T, the master by +T. */
+enum { FFC_FRIC_OPEN = 0, FFC_FRIC_STICK = 1, FFC_FRIC_SLIP = 2 };
+
+/* Result of the return map at one point. */
+typedef struct {
+    double t[3];        /* traction T (force/length^2) */
+    double dt_dr[3][3]; /* dT/dr (force/length^3) */
+    double dt_dn[3][3]; /* dT/dn (force/length^2) */
+    double dt_dtn[3];   /* dT/dt_N (1) */
+    int state;          /* FFC_FRIC_* (OPEN when t_N <= 0: T = 0) */
+} ffc_fric;
+
+/* Return map at one point: unit normal n[3], multiplier lam_t[3], slip
+ * r[3], mu >= 0, eps_t > 0, pressure tn.  No division by zero: t_N = 0
+ * gives OPEN, and |T_tr| = 0 with mu t_N = 0 gives T = 0.
+ * FFC_ERR_NULL, FFC_ERR_VALUE (mu, eps_t), FFC_ERR_NONFINITE. */
+int ffc_friction_map(const double n[3], const double lam_t[3], const double r[3],
+                     double mu, double eps_t, double tn, ffc_fric *out);
+
+/* Residual and tangent of one link with the law's friction: as
+ * ffc_link_normal with, when effects->friction and law->mu > 0, the
+ * previous positions Xsp[ns][3], Xmp[nm][3] (last converged step) and the
+ * multiplier lam_t[3].  Friction residual da S^T T with S = dr/du at fixed
+ * foot; its tangent includes the slip of the foot, the turning of the
+ * normal and the pressure's variation (non-symmetric). */
+int ffc_link_contact(const ffc_effects *effects, int ns, const double Xs[][3],
+                     const double Xs0[][3], const double Xsp[][3], const double xs[2],
+                     double w, int nm, const double Xm[][3], const double Xmp[][3],
+                     double lambda, const double lam_t[3], const ffc_law *law,
+                     ffc_link_state *st, double R[FFC_MAXDOF],
+                     double K[FFC_MAXDOF][FFC_MAXDOF]);
 
 /* Summary of an assembly or augmentation. */
 typedef struct {
@@ -321,33 +376,49 @@ typedef struct {
     double max_pen_node; /* largest weighted nodal penetration (nodal law, augmentation) */
     double max_dlam;   /* largest |lambda_new - lambda| (augmentation only) */
     double max_tn;     /* largest contact pressure */
-    double force[3];   /* total contact force on the slave side (force) */
+    double force[3];   /* total normal contact force on the slave side (force) */
+    long stick, slip;  /* friction: sticking, sliding links (pointwise law) or
+                          slave nodes (nodal law) */
+    double max_dlam_t; /* friction: largest |lambda_T,new - lambda_T| (augmentation) */
+    double max_tt;     /* friction: largest tangential traction |T| */
+    double force_t[3]; /* friction: total friction force on the slave side (force) */
+    double dissipation; /* friction: sum over points of da T . r, the work
+                          dissipated by slip since the last converged step (force*length) */
 } ffc_stats;
 
 /* Adds the contact residual of all links into R[3nv] and writes the
  * tangent as triplets (Ti, Tj, Tv)[cap] (NULL: residual only).  lambda:
- * [nv] per node or [nl] per link, as law->nodal says.  *ntrip is the number of triplets written, or the number
- * needed when FFC_ERR_CAPACITY is returned (R is then incomplete).
+ * [nv] per node or [nl] per link, as law->nodal says; lam_t the
+ * tangential multipliers, 3 per node [nv*3] or per link [nl*3] likewise
+ * (read only with friction on and law->mu > 0, NULL allowed otherwise;
+ * the tangent is then non-symmetric).  The nodal law applies the return
+ * map at the nodes to the weighted slip (see ffc_link.c).
+ * *ntrip is the number of triplets written, or the number needed when
+ * FFC_ERR_CAPACITY is returned (R is then incomplete).
  * On error *bad is the link at fault. */
 int ffc_assemble(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
                  long nl, const ffc_link links[], const double lambda[],
-                 const ffc_law *law, double R[], long cap, long Ti[], long Tj[],
+                 const double lam_t[], const ffc_law *law, double R[], long cap, long Ti[], long Tj[],
                  double Tv[], long *ntrip, ffc_stats *stats, long *bad);
 
 /* Uzawa update: pointwise lambda_q <- <lambda_q - eps g_q> (0 without a
  * partner), or nodal lambda_a <- <lambda_a - eps g_a> with the weighted
  * gap g_a = sum_q N_a da g / sum_q N_a da over linked points (0 at nodes
- * without linked points); stats->max_dlam measures the change. */
+ * without linked points); stats->max_dlam measures the change.  With
+ * friction, lam_t <- T of each node or link (0 where t_N = 0), evaluated
+ * with the pressures before the normal update; stats->max_dlam_t. */
 int ffc_augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
-                long nl, const ffc_link links[], double lambda[],
+                long nl, const ffc_link links[], double lambda[], double lam_t[],
                 const ffc_law *law, ffc_stats *stats, long *bad);
 
 /* Per-link output P[nl*FFC_POINT_COLS]: x, y, z (current slave point),
- * gap, t_N, active, area da, master facet. */
-#define FFC_POINT_COLS 8
+ * gap, t_N, active, area da, master facet; with friction (zeros without)
+ * the traction on the slave -T (x, y, z), the friction state FFC_FRIC_*,
+ * and the dissipation density T . r (force/length). */
+#define FFC_POINT_COLS 13
 int ffc_points(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
                long nl, const ffc_link links[], const double lambda[],
-               const ffc_law *law, double P[], long *bad);
+               const double lam_t[], const ffc_law *law, double P[], long *bad);
 
 /* Writes the rows of ffc_points (n points) as a legacy-VTK point cloud
  * with scalar fields gap, pressure, active; FFC_ERR_VALUE if the file

@@ -88,6 +88,11 @@ static int newton_free(int nn, const double X[][3], const double p[3],
             double xt[3], tt[2][3], xxt[3][3];
             facet_eval(nn, X, trial, xt, tt, xxt);
             if (dist2(p, xt) <= f0 * (1.0 + 1e-14) + 1e-30 * h2) break;
+            /* near the solution the distance changes below its round-off:
+             * accept a step that reduces the stationarity residual */
+            double rt[3] = {p[0] - xt[0], p[1] - xt[1], p[2] - xt[2]};
+            const double Ft0 = ffc__dot(tt[0], rt), Ft1 = ffc__dot(tt[1], rt);
+            if (Ft0 * Ft0 + Ft1 * Ft1 < 0.25 * (F[0] * F[0] + F[1] * F[1])) break;
             lam *= 0.5;
         }
         xi[0] = trial[0];

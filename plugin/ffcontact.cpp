@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ffc.h"
@@ -39,6 +40,45 @@ struct P2Arrays {
 };
 
 const long CP_HEAD = 4; // header entries of a contact pair descriptor
+
+// A FreeFEM operator with any number of arguments (FreeFEM's fixed-arity
+// templates stop at eight).
+template <class R, class... A>
+class OneOperatorN : public OneOperator {
+public:
+    typedef R (*func)(const A &...);
+
+private:
+    func f;
+    class Code : public E_F0 {
+    public:
+        func f;
+        Expression a[sizeof...(A)];
+        Code(func ff, const Expression *e) : f(ff)
+        {
+            for (size_t i = 0; i < sizeof...(A); i++) a[i] = e[i];
+        }
+        template <size_t... I>
+        AnyType call(Stack s, std::index_sequence<I...>) const
+        {
+            return SetAny<R>(f(GetAny<A>((*a[I])(s))...));
+        }
+        AnyType operator()(Stack s) const { return call(s, std::index_sequence_for<A...>()); }
+    };
+
+public:
+    explicit OneOperatorN(func ff)
+        : OneOperator(map_type[typeid(R).name()], ArrayOfaType(map_type[typeid(A).name()]..., false)), f(ff)
+    {
+    }
+    E_F0 *code(const basicAC_F0 &args) const
+    {
+        if (args.named_parameter && !args.named_parameter->empty()) CompileError("no named parameters here");
+        Expression e[sizeof...(A)];
+        for (size_t i = 0; i < sizeof...(A); i++) e[i] = t[i]->CastTo(args[i]);
+        return new Code(f, e);
+    }
+};
 
 void mesh_arrays(const Mesh3 &Th, MeshArrays &m)
 {
@@ -477,9 +517,8 @@ ffc_effects need_effects(const char *fn, long bits)
         s << "argument 'opt': effects = opt[1] = " << bits << " is not a set of effects (bits: 1 friction, 2 dynamic, 4 finite deformation)";
         fail(fn, s.str());
     }
-    if (bits & 1) fail(fn, "argument 'opt': friction (bit 1) is not available in this version");
     if (bits & 2) fail(fn, "argument 'opt': dynamic contact (bit 2) is not available in this version");
-    ffc_effects e = {0, 0, (bits & 4) ? 1 : 0};
+    ffc_effects e = {(bits & 1) ? 1 : 0, 0, (bits & 4) ? 1 : 0};
     return e;
 }
 
@@ -495,12 +534,14 @@ struct LinkCall {
     int qdeg = 0;
     std::vector<ffc_link> links;
     ffc_pair pair;
+    const double *lam_t = nullptr; // [3 nl] tangential multipliers (friction)
 };
 
 // Options opt (real[int]): [eps_N (> 0, force/length^3), effects bits,
 // multipliers (1: at slave nodes, lambda[nv], default; 0: at slave
 // quadrature points, lambda[nlinks]), tangent (0: consistent, default;
-// 1: material part only, positive semi-definite)].
+// 1: material part only, positive semi-definite), and with friction
+// (effects bit 1) mu (>= 0) and eps_T (> 0, force/length^3)].
 struct Options {
     ffc_effects fx;
     ffc_law law;
@@ -535,11 +576,29 @@ Options need_options(const char *fn, KN<double> *opt)
             fail(fn, "argument 'opt': tangent = opt[3] = " + num(m) + " must be 0 (consistent) or 1 (material part only)");
         o.law.material_only = (int)m;
     }
+    o.law.mu = 0.0;
+    o.law.eps_t = 0.0;
+    if (o.fx.friction) {
+        if (opt->N() < 6) {
+            std::ostringstream st;
+            st << "argument 'opt': size " << opt->N()
+               << "; friction (effects bit 1) needs [epsN, effects, multipliers, tangent, mu, epsT]";
+            fail(fn, st.str());
+        }
+        o.law.mu = (*opt)[4];
+        o.law.eps_t = (*opt)[5];
+        if (!(o.law.mu >= 0) || std::isinf(o.law.mu))
+            fail(fn, "argument 'opt': friction coefficient mu = opt[4] = " + num(o.law.mu) + " must be finite and >= 0");
+        if (!(o.law.eps_t > 0) || std::isinf(o.law.eps_t))
+            fail(fn, "argument 'opt': tangential penalty epsT = opt[5] = " + num(o.law.eps_t) + " must be finite and > 0");
+    }
     return o;
 }
 
+// up, lamT: nullptr in the frictionless forms of the calls
 void need_links(const char *fn, pmesh3 pTh, KN<double> *u, KN<long> *CP,
-                KNM<double> *L, KN<double> *lam, const Options &o, LinkCall &c)
+                KNM<double> *L, KN<double> *lam, const Options &o, LinkCall &c,
+                KN<double> *up = nullptr, KN<double> *lamT = nullptr, bool history_form = false)
 {
     const Mesh3 &Th = need_mesh(fn, pTh);
     mesh_arrays(Th, c.m);
@@ -614,6 +673,42 @@ void need_links(const char *fn, pmesh3 pTh, KN<double> *u, KN<long> *CP,
     c.pair.ns = (int)P.ns; c.pair.nfs = c.nfs; c.pair.Fs = P.Fs;
     c.pair.nm = (int)P.nm; c.pair.nfm = c.nfm; c.pair.Fm = P.Fm;
     c.pair.nv = c.nn; c.pair.X = X; c.pair.u = c.u;
+    c.pair.u_prev = nullptr;
+    if (o.fx.friction && !history_form) {
+        std::ostringstream s;
+        s << "friction (effects bit 1) needs the friction history: call " << fn
+          << "(Th, u, uprev, CP, L, lambda, lambdaT, opt, ...) with the displacement of the last converged step and the tangential multipliers";
+        fail(fn, s.str());
+    }
+    if (!history_form) return;
+    if (!up) fail(fn, "argument 'uprev': array is not defined");
+    if (up->N() != u->N()) {
+        std::ostringstream s;
+        s << "argument 'uprev': size " << up->N() << ", expected the size of 'u' (" << u->N() << ")";
+        fail(fn, s.str());
+    }
+    for (long k = 0; k < up->N(); k++)
+        if (!std::isfinite((*up)[k])) {
+            std::ostringstream s;
+            s << "argument 'uprev': uprev[" << k << "] = " << num((*up)[k]) << " is not finite";
+            fail(fn, s.str());
+        }
+    if (!lamT) fail(fn, "argument 'lambdaT': array is not defined");
+    const long nlt = 3 * (o.law.nodal ? c.nn : c.nl);
+    if (lamT->N() != nlt) {
+        std::ostringstream s;
+        s << "argument 'lambdaT': size " << lamT->N() << ", expected 3 per "
+          << (o.law.nodal ? (c.quad ? "P2 node" : "mesh vertex") : "link") << ": " << nlt;
+        fail(fn, s.str());
+    }
+    for (long k = 0; k < lamT->N(); k++)
+        if (!std::isfinite((*lamT)[k])) {
+            std::ostringstream s;
+            s << "argument 'lambdaT': lambdaT[" << k << "] = " << num((*lamT)[k]) << " is not finite";
+            fail(fn, s.str());
+        }
+    c.pair.u_prev = &(*up)[0];
+    c.lam_t = &(*lamT)[0];
 }
 
 void link_error(const char *fn, int st, long bad)
@@ -625,34 +720,44 @@ void link_error(const char *fn, int st, long bad)
     fail(fn, s.str());
 }
 
-// ffcAssemble(Th, u, CP, L, lambda, opt, R, K): adds the contact residual
-// into R (size 3 nv) and sets K to the contact tangent; returns the number
-// of active links.
-long ffcAssemble(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
-                 KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
-                 KN<double> *const &R, Matrice_Creuse<double> *const &K)
+// ffcAssemble(Th, u, [uprev,] CP, L, lambda, [lambdaT,] opt, R, K): adds
+// the contact residual into R (size 3 nv) and sets K to the contact
+// tangent (non-symmetric with friction); returns the number of active
+// links.  The forms with uprev (displacement of the last converged step)
+// and lambdaT (3 tangential multipliers per link) are the frictional ones.
+long assemble(const char *fn, pmesh3 pTh, KN<double> *u, KN<double> *up, KN<long> *CP, KNM<double> *L,
+              KN<double> *lam, KN<double> *lamT, KN<double> *opt, KN<double> *R, Matrice_Creuse<double> *K,
+              bool history_form)
 {
-    const char *fn = "ffcAssemble";
     Options o = need_options(fn, opt);
     LinkCall c;
-    need_links(fn, pTh, u, CP, L, lam, o, c);
+    need_links(fn, pTh, u, CP, L, lam, o, c, up, lamT, history_form);
     const long n = 3 * c.nn;
     need_size(fn, "R", R, n);
-    if (!K) fail(fn, "argument 'K': matrix is not defined");
+    if (K == nullptr && std::string(fn) == "ffcAssemble") fail(fn, "argument 'K': matrix is not defined");
+    std::vector<double> Rc(n, 0.0);
+    ffc_stats st;
+    long nt = 0, bad = -1;
+    int rc;
+    if (!K) {
+        rc = ffc_assemble(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], c.lam_t, &o.law, Rc.data(), 0,
+                          nullptr, nullptr, nullptr, &nt, &st, &bad);
+        if (rc) link_error(fn, rc, bad);
+        for (long i = 0; i < n; i++) (*R)[i] += Rc[i];
+        return st.active;
+    }
     // triplet buffer: first guess from the links that look active, grown once if needed
     const long nd = 3 * (c.pair.ns + c.pair.nm), nd2 = nd * nd;
     long guess = 0;
     for (long k = 0; k < c.nl; k++)
         if (c.links[k].mf >= 0 && (c.links[k].gap < 0 || (o.law.nodal ? true : (*lam)[k] > 0))) guess++;
-    long cap = (guess + 16) * nd2, nt = 0, bad = -1;
+    long cap = (guess + 16) * nd2 * (o.fx.friction ? 2 : 1);
     std::vector<long> Ti, Tj;
-    std::vector<double> Tv, Rc(n, 0.0);
-    ffc_stats st;
-    int rc;
+    std::vector<double> Tv;
     for (int attempt = 0; attempt < 2; attempt++) {
         Ti.resize(cap); Tj.resize(cap); Tv.resize(cap);
         std::fill(Rc.begin(), Rc.end(), 0.0);
-        rc = ffc_assemble(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], &o.law, Rc.data(),
+        rc = ffc_assemble(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], c.lam_t, &o.law, Rc.data(),
                           cap, Ti.data(), Tj.data(), Tv.data(), &nt, &st, &bad);
         if (rc != FFC_ERR_CAPACITY) break;
         cap = nt;
@@ -666,73 +771,105 @@ long ffcAssemble(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
     return st.active;
 }
 
-// ffcResidual(Th, u, CP, L, lambda, opt, R): adds the contact residual
-// into R (size 3 nv), no tangent; returns the number of active links.
+long ffcAssemble(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
+                 KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
+                 KN<double> *const &R, Matrice_Creuse<double> *const &K)
+{
+    return assemble("ffcAssemble", pTh, u, nullptr, CP, L, lam, nullptr, opt, R, K, false);
+}
+
+long ffcAssembleF(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
+                  KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &lamT,
+                  KN<double> *const &opt, KN<double> *const &R, Matrice_Creuse<double> *const &K)
+{
+    return assemble("ffcAssemble", pTh, u, up, CP, L, lam, lamT, opt, R, K, true);
+}
+
+// ffcResidual(Th, u, [uprev,] CP, L, lambda, [lambdaT,] opt, R): adds the
+// contact residual into R (size 3 nv), no tangent; returns the number of
+// active links.
 long ffcResidual(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
                  KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
                  KN<double> *const &R)
 {
-    const char *fn = "ffcResidual";
-    Options o = need_options(fn, opt);
-    LinkCall c;
-    need_links(fn, pTh, u, CP, L, lam, o, c);
-    const long n = 3 * c.nn;
-    need_size(fn, "R", R, n);
-    std::vector<double> Rc(n, 0.0);
-    ffc_stats st;
-    long nt = 0, bad = -1;
-    int rc = ffc_assemble(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], &o.law, Rc.data(),
-                          0, nullptr, nullptr, nullptr, &nt, &st, &bad);
-    if (rc) link_error(fn, rc, bad);
-    for (long i = 0; i < n; i++) (*R)[i] += Rc[i];
-    return st.active;
+    return assemble("ffcResidual", pTh, u, nullptr, CP, L, lam, nullptr, opt, R, nullptr, false);
 }
+
+long ffcResidualF(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
+                  KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &lamT,
+                  KN<double> *const &opt, KN<double> *const &R)
+{
+    return assemble("ffcResidual", pTh, u, up, CP, L, lam, lamT, opt, R, nullptr, true);
+}
+
+const long S_SIZE = 16;
 
 void stats_out(const ffc_stats &st, KN<double> *S)
 {
-    S->resize(9);
+    S->resize(S_SIZE);
     (*S)[0] = st.linked; (*S)[1] = st.active; (*S)[2] = st.max_pen; (*S)[3] = st.max_dlam;
     (*S)[4] = st.max_tn; (*S)[5] = st.force[0]; (*S)[6] = st.force[1]; (*S)[7] = st.force[2];
     (*S)[8] = st.max_pen_node;
+    (*S)[9] = st.stick; (*S)[10] = st.slip; (*S)[11] = st.max_dlam_t;
+    (*S)[12] = st.force_t[0]; (*S)[13] = st.force_t[1]; (*S)[14] = st.force_t[2]; (*S)[15] = st.dissipation;
 }
 
-// ffcAugment(Th, u, CP, L, lambda, opt, S): Uzawa update
-// lambda <- <lambda - eps g>; S = [linked, active, max penetration,
-// max |change of lambda|, max pressure, Fx, Fy, Fz, max weighted nodal
-// penetration]; returns active links.
-long ffcAugment(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
-                KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
-                KN<double> *const &S)
+// ffcAugment(Th, u, [uprev,] CP, L, lambda, [lambdaT,] opt, S): Uzawa
+// update lambda <- <lambda - eps g> (and lambdaT <- T with friction);
+// S = [linked, active, max penetration, max |change of lambda|, max
+// pressure, Fx, Fy, Fz, max weighted nodal penetration, sticking,
+// sliding, max |change of lambdaT|, friction force x, y, z, dissipation];
+// returns active links.
+long augment(const char *fn, pmesh3 pTh, KN<double> *u, KN<double> *up, KN<long> *CP, KNM<double> *L,
+             KN<double> *lam, KN<double> *lamT, KN<double> *opt, KN<double> *S, bool history_form)
 {
-    const char *fn = "ffcAugment";
     Options o = need_options(fn, opt);
     LinkCall c;
-    need_links(fn, pTh, u, CP, L, lam, o, c);
+    need_links(fn, pTh, u, CP, L, lam, o, c, up, lamT, history_form);
     if (!S) fail(fn, "argument 'S': array is not defined");
     std::vector<double> l(&(*lam)[0], &(*lam)[0] + lam->N());
+    const long nlt = c.lam_t ? lamT->N() : 0;
+    std::vector<double> lt(c.lam_t ? c.lam_t : l.data(), c.lam_t ? c.lam_t + nlt : l.data());
     ffc_stats st;
     long bad = -1;
-    int rc = ffc_augment(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), l.data(), &o.law, &st, &bad);
+    int rc = ffc_augment(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), l.data(), c.lam_t ? lt.data() : nullptr,
+                         &o.law, &st, &bad);
     if (rc) link_error(fn, rc, bad);
     for (long k = 0; k < lam->N(); k++) (*lam)[k] = l[k];
+    if (c.lam_t)
+        for (long k = 0; k < nlt; k++) (*lamT)[k] = lt[k];
     stats_out(st, S);
     return st.active;
 }
 
-// ffcPoints(Th, u, CP, L, lambda, opt, P): one row per link: x, y, z, gap,
-// pressure, active, area, master facet; returns the active links.
-long ffcPoints(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
-               KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
-               KNM<double> *const &P)
+long ffcAugment(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
+                KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
+                KN<double> *const &S)
 {
-    const char *fn = "ffcPoints";
+    return augment("ffcAugment", pTh, u, nullptr, CP, L, lam, nullptr, opt, S, false);
+}
+
+long ffcAugmentF(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
+                 KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &lamT,
+                 KN<double> *const &opt, KN<double> *const &S)
+{
+    return augment("ffcAugment", pTh, u, up, CP, L, lam, lamT, opt, S, true);
+}
+
+// ffcPoints(Th, u, [uprev,] CP, L, lambda, [lambdaT,] opt, P): one row per
+// link: x, y, z, gap, pressure, active, area, master facet, friction
+// traction on the slave (x, y, z), friction state (0 open, 1 stick,
+// 2 slip), dissipation density; returns the active links.
+long points(const char *fn, pmesh3 pTh, KN<double> *u, KN<double> *up, KN<long> *CP, KNM<double> *L,
+            KN<double> *lam, KN<double> *lamT, KN<double> *opt, KNM<double> *P, bool history_form)
+{
     Options o = need_options(fn, opt);
     LinkCall c;
-    need_links(fn, pTh, u, CP, L, lam, o, c);
+    need_links(fn, pTh, u, CP, L, lam, o, c, up, lamT, history_form);
     if (!P) fail(fn, "argument 'P': array is not defined");
     std::vector<double> out(c.nl * FFC_POINT_COLS);
     long bad = -1;
-    int rc = ffc_points(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], &o.law, out.data(), &bad);
+    int rc = ffc_points(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], c.lam_t, &o.law, out.data(), &bad);
     if (rc) link_error(fn, rc, bad);
     P->resize(c.nl, FFC_POINT_COLS);
     long active = 0;
@@ -741,6 +878,20 @@ long ffcPoints(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
         active += out[k * FFC_POINT_COLS + 5] > 0;
     }
     return active;
+}
+
+long ffcPoints(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
+               KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
+               KNM<double> *const &P)
+{
+    return points("ffcPoints", pTh, u, nullptr, CP, L, lam, nullptr, opt, P, false);
+}
+
+long ffcPointsF(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
+                KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &lamT,
+                KN<double> *const &opt, KNM<double> *const &P)
+{
+    return points("ffcPoints", pTh, u, up, CP, L, lam, lamT, opt, P, true);
 }
 
 // ffcSaveVTK(file, P): the contact points of ffcPoints as a VTK point cloud
@@ -845,6 +996,16 @@ static void init()
     Global.Add("ffcPoints", "(",
                new OneOperator7_<long, pmesh3, KN<double> *, KN<long> *, KNM<double> *, KN<double> *,
                                  KN<double> *, KNM<double> *>(ffcPoints));
+    typedef KN<double> *V;
+    Global.Add("ffcAssemble", "(",
+               new OneOperatorN<long, pmesh3, V, V, KN<long> *, KNM<double> *, V, V, V, V, Matrice_Creuse<double> *>(
+                   ffcAssembleF));
+    Global.Add("ffcResidual", "(",
+               new OneOperatorN<long, pmesh3, V, V, KN<long> *, KNM<double> *, V, V, V, V>(ffcResidualF));
+    Global.Add("ffcAugment", "(",
+               new OneOperatorN<long, pmesh3, V, V, KN<long> *, KNM<double> *, V, V, V, V>(ffcAugmentF));
+    Global.Add("ffcPoints", "(",
+               new OneOperatorN<long, pmesh3, V, V, KN<long> *, KNM<double> *, V, V, V, KNM<double> *>(ffcPointsF));
     Global.Add("ffcSaveVTK", "(", new OneOperator2_<long, string *, KNM<double> *>(ffcSaveVTK));
     Global.Add("ffcWriteColumns", "(",
                new OneOperator4_<long, string *, string *, KNM<double> *, KN<double> *>(ffcWriteColumns));

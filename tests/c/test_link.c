@@ -205,7 +205,7 @@ static void test_assemble_augment(void **state)
     double u[8 * 3] = {0};
     for (int v = 4; v < 8; v++) u[3 * v + 2] = -0.01;
     const long Fm[6] = {0, 1, 2, 0, 2, 3}, Fs[6] = {4, 6, 5, 4, 7, 6};
-    ffc_pair P = {3, 2, Fs, 3, 2, Fm, 8, X, u};
+    ffc_pair P = {3, 2, Fs, 3, 2, Fm, 8, X, u, NULL};
     ffc_effects fx = {0, 0, 0};
     double xs[8 * 3];
     for (int i = 0; i < 24; i++) xs[i] = X[i] + u[i];
@@ -219,12 +219,12 @@ static void test_assemble_augment(void **state)
     long Ti[2000], Tj[2000], nt, bad;
     double Tv[2000];
     ffc_stats st;
-    ffc_law law = {100, 0, 0};
+    ffc_law law = {100, 0, 0, 0.0, 0.0};
     /* too small a buffer: the count needed is returned */
-    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, &law, R, 10, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_CAPACITY);
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, NULL, &law, R, 10, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_CAPACITY);
     assert_int_equal(nt, 6 * 18 * 18);
     memset(R, 0, sizeof R);
-    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, &law, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, NULL, &law, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
     assert_int_equal(st.active, 6);
     assert_close(st.max_pen, 0.01, 1e-14);
     assert_close(st.force[2], 100 * 0.01 * 1.0, 1e-12); /* pressure 1 on area 1 */
@@ -232,42 +232,42 @@ static void test_assemble_augment(void **state)
     for (int v = 4; v < 8; v++) fz -= R[3 * v + 2];
     assert_close(fz, 1.0, 1e-12);
     /* augmentation: lambda = eps * 0.01 = 1 everywhere */
-    assert_int_equal(ffc_augment(&fx, &P, 2, 6, L, lam, &law, &st, &bad), FFC_OK);
+    assert_int_equal(ffc_augment(&fx, &P, 2, 6, L, lam, NULL, &law, &st, &bad), FFC_OK);
     for (int k = 0; k < 6; k++) assert_close(lam[k], 1.0, 1e-12);
     assert_close(st.max_dlam, 1.0, 1e-12);
     double Pt[6 * FFC_POINT_COLS];
-    assert_int_equal(ffc_points(&fx, &P, 2, 6, L, lam, &law, Pt, &bad), FFC_OK);
+    assert_int_equal(ffc_points(&fx, &P, 2, 6, L, lam, NULL, &law, Pt, &bad), FFC_OK);
     for (int k = 0; k < 6; k++) {
         assert_close(Pt[k * FFC_POINT_COLS + 2], -0.01, 1e-15);
         assert_close(Pt[k * FFC_POINT_COLS + 4], 2.0, 1e-12);
     }
     /* bad input: wrong link count, NaN multiplier, non-positive penalty */
-    assert_int_equal(ffc_assemble(&fx, &P, 2, 5, L, lam, &law, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_SIZE);
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 5, L, lam, NULL, &law, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_SIZE);
     lam[3] = NAN;
-    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, &law, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_NONFINITE);
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, NULL, &law, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_NONFINITE);
     assert_int_equal(bad, 3);
     lam[3] = 0;
     law.eps_n = 0;
-    assert_int_equal(ffc_augment(&fx, &P, 2, 6, L, lam, &law, &st, &bad), FFC_ERR_VALUE);
+    assert_int_equal(ffc_augment(&fx, &P, 2, 6, L, lam, NULL, &law, &st, &bad), FFC_ERR_VALUE);
     law.eps_n = 100;
     /* nodal multipliers: the weighted gap of every slave node is -0.01, so
      * one augmentation gives lambda = 1 at the 4 slave nodes (and 0 at the
      * master nodes); the pressure is then 1 + 100 * 0.01 = 2 everywhere */
-    ffc_law nod = {100, 1, 0};
+    ffc_law nod = {100, 1, 0, 0.0, 0.0};
     double lamv[8] = {0};
-    assert_int_equal(ffc_augment(&fx, &P, 2, 6, L, lamv, &nod, &st, &bad), FFC_OK);
+    assert_int_equal(ffc_augment(&fx, &P, 2, 6, L, lamv, NULL, &nod, &st, &bad), FFC_OK);
     for (int v = 0; v < 8; v++) assert_close(lamv[v], v >= 4 ? 1.0 : 0.0, 1e-12);
     assert_close(st.max_pen_node, 0.01, 1e-14);
-    assert_int_equal(ffc_points(&fx, &P, 2, 6, L, lamv, &nod, Pt, &bad), FFC_OK);
+    assert_int_equal(ffc_points(&fx, &P, 2, 6, L, lamv, NULL, &nod, Pt, &bad), FFC_OK);
     for (int k = 0; k < 6; k++) assert_close(Pt[k * FFC_POINT_COLS + 4], 2.0, 1e-12);
     lamv[5] = INFINITY;
-    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lamv, &nod, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_NONFINITE);
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lamv, NULL, &nod, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_NONFINITE);
     assert_int_equal(bad, 5);
     /* open pair: no contact term at all */
     for (int v = 4; v < 8; v++) u[3 * v + 2] = 0.2;
     memset(lam, 0, sizeof lam);
     memset(R, 0, sizeof R);
-    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, &law, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
+    assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, NULL, &law, R, 2000, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
     assert_int_equal(nt, 0);
     assert_int_equal(st.active, 0);
     for (int i = 0; i < 24; i++) assert_close(R[i], 0.0, 0.0);
@@ -327,8 +327,8 @@ static void test_nodal_tangent(void **state)
     ffc_tree_free(t);
     double lam[NV] = {0};
     for (int v = 25; v < NV; v++) lam[v] = v % 3 ? test_rand(&s, 0.0, 0.5) : 0.0;
-    ffc_law law = {60, 1, 0};
-    ffc_pair P = {3, NFS, Fs, 3, NFM, Fm, NV, X, u};
+    ffc_law law = {60, 1, 0, 0.0, 0.0};
+    ffc_pair P = {3, NFS, Fs, 3, NFM, Fm, NV, X, u, NULL};
     enum { CAP = 200000 };
     long *Ti = malloc(CAP * sizeof *Ti), *Tj = malloc(CAP * sizeof *Tj), nt, bad;
     double *Tv = malloc(CAP * sizeof *Tv);
@@ -337,7 +337,7 @@ static void test_nodal_tangent(void **state)
         ffc_effects fx = {0, 0, finite};
         double R[NV * 3] = {0};
         ffc_stats st;
-        assert_int_equal(ffc_assemble(&fx, &P, 2, NFS * nq, L, lam, &law, R, CAP, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
+        assert_int_equal(ffc_assemble(&fx, &P, 2, NFS * nq, L, lam, NULL, &law, R, CAP, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
         assert_true(st.active > 0 && st.active < NFS * nq); /* part open, part closed */
         memset(K, 0, sizeof K);
         for (long k = 0; k < nt; k++) K[Ti[k]][Tj[k]] += Tv[k];
@@ -349,9 +349,9 @@ static void test_nodal_tangent(void **state)
             double Rp[NV * 3] = {0}, Rm[NV * 3] = {0}, u0 = u[l];
             ffc_stats sp, sm;
             u[l] = u0 + h;
-            assert_int_equal(ffc_assemble(&fx, &P, 2, NFS * nq, L, lam, &law, Rp, 0, NULL, NULL, NULL, &nt, &sp, &bad), FFC_OK);
+            assert_int_equal(ffc_assemble(&fx, &P, 2, NFS * nq, L, lam, NULL, &law, Rp, 0, NULL, NULL, NULL, &nt, &sp, &bad), FFC_OK);
             u[l] = u0 - h;
-            assert_int_equal(ffc_assemble(&fx, &P, 2, NFS * nq, L, lam, &law, Rm, 0, NULL, NULL, NULL, &nt, &sm, &bad), FFC_OK);
+            assert_int_equal(ffc_assemble(&fx, &P, 2, NFS * nq, L, lam, NULL, &law, Rm, 0, NULL, NULL, NULL, &nt, &sm, &bad), FFC_OK);
             u[l] = u0;
             assert_int_equal(sp.active, st.active);
             assert_int_equal(sm.active, st.active);
@@ -370,7 +370,7 @@ static void test_nodal_tangent(void **state)
         mo.material_only = 1;
         double R[NV * 3] = {0};
         ffc_stats st;
-        assert_int_equal(ffc_assemble(&fx, &P, 2, NFS * nq, L, lam, &mo, R, CAP, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
+        assert_int_equal(ffc_assemble(&fx, &P, 2, NFS * nq, L, lam, NULL, &mo, R, CAP, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
         memset(K, 0, sizeof K);
         for (long k = 0; k < nt; k++) K[Ti[k]][Tj[k]] += Tv[k];
         for (int trial = 0; trial < 20; trial++) {
@@ -390,7 +390,7 @@ static void test_nodal_tangent(void **state)
     ffc_stats st;
     double lam2[NV];
     memcpy(lam2, lam, sizeof lam);
-    assert_int_equal(ffc_augment(&fx0, &P, 2, NFS * nq, L, lam2, &law, &st, &bad), FFC_OK);
+    assert_int_equal(ffc_augment(&fx0, &P, 2, NFS * nq, L, lam2, NULL, &law, &st, &bad), FFC_OK);
     int changed = 0;
     for (int v = 25; v < NV; v++) changed += lam2[v] != lam[v];
     assert_true(changed > 0);

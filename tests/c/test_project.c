@@ -233,6 +233,35 @@ static void test_deriv_rejects_clamped(void **state)
     assert_int_equal(ffc_project_deriv(1, Ns, 3, T3, &pr, dxi, dg, dn), FFC_ERR_VALUE);
 }
 
+/* the foot of a curved facet is stationary to round-off: tau_a . (p - x)
+ * ~ 1e-15 (a foot left 1e-6 short by a stalled line search would show
+ * up as 1e-4 errors in finite-difference checks of contact tangents) */
+static void test_curved_foot_precision(void **state)
+{
+    (void)state;
+    uint64_t s = 77;
+    double X[6][3];
+    test_sphere_facet(1.0, 0.8, X);
+    for (int trial = 0; trial < 500; trial++) {
+        ffc_point g;
+        const double xi[2] = {test_rand(&s, 0.1, 0.45), test_rand(&s, 0.1, 0.45)};
+        ffc_facet_point(6, (const double(*)[3])X, xi, &g);
+        double p[3];
+        const double off = test_rand(&s, -0.05, 0.05);
+        for (int i = 0; i < 3; i++)
+            p[i] = g.x[i] + off * g.n[i] + test_rand(&s, -1e-3, 1e-3) * (g.tau[0][i] + g.tau[1][i]);
+        ffc_proj pr;
+        assert_true(ffc_project(6, (const double(*)[3])X, p, &pr) >= 0);
+        ffc_point f;
+        ffc_facet_point(6, (const double(*)[3])X, pr.xi, &f);
+        for (int a = 0; a < 2; a++) {
+            double r = 0;
+            for (int i = 0; i < 3; i++) r += f.tau[a][i] * (p[i] - f.x[i]);
+            assert_close(r, 0.0, 1e-14);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -242,6 +271,7 @@ int main(void)
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_derivatives),
         cmocka_unit_test(test_deriv_rejects_clamped),
+        cmocka_unit_test(test_curved_foot_precision),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,507 @@
+/* test_friction.c: Coulomb friction: the return map (regimes, cone,
+ * idempotence, objectivity, limits, derivatives), the link tangent in
+ * stick and in slip against central differences (flat and curved facets,
+ * small strain and finite deformation), the assembled tangent of both
+ * multiplier laws, the Uzawa update, and mu = 0 against frictionless. */
+#include "ffc_test.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static void unit(double v[3])
+{
+    double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (int i = 0; i < 3; i++) v[i] /= l;
+}
+
+static void test_map_regimes(void **state)
+{
+    (void)state;
+    const double n[3] = {0, 0, 1}, lam[3] = {0, 0, 7.0}; /* normal part of lambda ignored */
+    ffc_fric f;
+    const double r1[3] = {1e-3, 0, 0};
+    assert_int_equal(ffc_friction_map(n, lam, r1, 0.5, 100.0, 1.0, &f), FFC_OK);
+    assert_int_equal(f.state, FFC_FRIC_STICK);
+    assert_close(f.t[0], 0.1, 1e-15);
+    assert_close(f.t[1], 0.0, 0.0);
+    assert_close(f.t[2], 0.0, 1e-15);
+    const double r2[3] = {0, -1e-2, 0};
+    assert_int_equal(ffc_friction_map(n, lam, r2, 0.5, 100.0, 1.0, &f), FFC_OK);
+    assert_int_equal(f.state, FFC_FRIC_SLIP);
+    assert_close(f.t[1], -0.5, 1e-15);
+    assert_close(f.dt_dtn[1], -0.5, 1e-15);
+    /* open: no pressure, no traction */
+    assert_int_equal(ffc_friction_map(n, lam, r2, 0.5, 100.0, 0.0, &f), FFC_OK);
+    assert_int_equal(f.state, FFC_FRIC_OPEN);
+    for (int i = 0; i < 3; i++) assert_close(f.t[i], 0.0, 0.0);
+}
+
+static void test_map_limits(void **state)
+{
+    (void)state;
+    const double n[3] = {0, 1, 0}, z[3] = {0, 0, 0}, r[3] = {0.3, 0, 0.1};
+    ffc_fric f;
+    /* no trial traction and no pressure: no division by zero */
+    assert_int_equal(ffc_friction_map(n, z, z, 0.3, 10.0, 0.0, &f), FFC_OK);
+    assert_int_equal(f.state, FFC_FRIC_OPEN);
+    /* mu = 0 with pressure, with and without slip: T = 0, finite derivatives */
+    for (int k = 0; k < 2; k++) {
+        assert_int_equal(ffc_friction_map(n, z, k ? r : z, 0.0, 10.0, 2.0, &f), FFC_OK);
+        assert_int_equal(f.state, FFC_FRIC_SLIP);
+        for (int i = 0; i < 3; i++) {
+            assert_close(f.t[i], 0.0, 0.0);
+            assert_true(isfinite(f.dt_dtn[i]));
+            for (int j = 0; j < 3; j++) assert_true(f.dt_dr[i][j] == 0.0 && f.dt_dn[i][j] == 0.0);
+        }
+    }
+    /* tiny pressure and tiny slip: bounded traction, no NaN */
+    const double rt[3] = {1e-300, 0, 0};
+    assert_int_equal(ffc_friction_map(n, z, rt, 0.3, 10.0, 1e-300, &f), FFC_OK);
+    for (int i = 0; i < 3; i++) assert_true(isfinite(f.t[i]) && fabs(f.t[i]) <= 1e-299);
+    /* bad input */
+    assert_int_equal(ffc_friction_map(n, z, r, -0.1, 10.0, 1.0, &f), FFC_ERR_VALUE);
+    assert_int_equal(ffc_friction_map(n, z, r, 0.3, 0.0, 1.0, &f), FFC_ERR_VALUE);
+    assert_int_equal(ffc_friction_map(n, z, r, 0.3, -1.0, 1.0, &f), FFC_ERR_VALUE);
+    assert_int_equal(ffc_friction_map(n, z, r, INFINITY, 1.0, 1.0, &f), FFC_ERR_VALUE);
+    const double rn[3] = {NAN, 0, 0};
+    assert_int_equal(ffc_friction_map(n, z, rn, 0.3, 1.0, 1.0, &f), FFC_ERR_NONFINITE);
+    assert_int_equal(ffc_friction_map(n, z, r, 0.3, 1.0, NAN, &f), FFC_ERR_NONFINITE);
+    assert_int_equal(ffc_friction_map(NULL, z, r, 0.3, 1.0, 1.0, &f), FFC_ERR_NULL);
+}
+
+/* inside the cone, tangent, idempotent, objective: random inputs */
+static void test_map_properties(void **state)
+{
+    (void)state;
+    uint64_t s = 11;
+    for (int trial = 0; trial < 200; trial++) {
+        double n[3], lam[3], r[3];
+        for (int i = 0; i < 3; i++) {
+            n[i] = test_rand(&s, -1, 1);
+            lam[i] = test_rand(&s, -2, 2);
+            r[i] = test_rand(&s, -0.02, 0.02);
+        }
+        unit(n);
+        const double mu = test_rand(&s, 0.05, 1.0), et = test_rand(&s, 10, 300), tn = test_rand(&s, 0.1, 5);
+        ffc_fric f, g;
+        assert_int_equal(ffc_friction_map(n, lam, r, mu, et, tn, &f), FFC_OK);
+        const double tt = sqrt(f.t[0] * f.t[0] + f.t[1] * f.t[1] + f.t[2] * f.t[2]);
+        assert_true(tt <= mu * tn * (1 + 1e-14));
+        assert_close(f.t[0] * n[0] + f.t[1] * n[1] + f.t[2] * n[2], 0.0, 1e-14 * (1 + tt));
+        /* the map applied to its own result with no further slip */
+        const double z[3] = {0, 0, 0};
+        assert_int_equal(ffc_friction_map(n, f.t, z, mu, et, tn, &g), FFC_OK);
+        for (int i = 0; i < 3; i++) assert_close(g.t[i], f.t[i], 1e-14 * (1 + tt));
+        /* rotate the scene: the traction rotates with it */
+        double Rm[3][3], ax[3] = {test_rand(&s, -1, 1), test_rand(&s, -1, 1), test_rand(&s, -1, 1)};
+        test_rotation(ax, test_rand(&s, 0, 6.28), Rm);
+        double nr[3], lr[3], rr[3], tr[3];
+        const double o[3] = {0, 0, 0};
+        test_move(Rm, o, n, nr);
+        test_move(Rm, o, lam, lr);
+        test_move(Rm, o, r, rr);
+        test_move(Rm, o, f.t, tr);
+        assert_int_equal(ffc_friction_map(nr, lr, rr, mu, et, tn, &g), FFC_OK);
+        assert_int_equal(g.state, f.state);
+        for (int i = 0; i < 3; i++) assert_close(g.t[i], tr[i], 1e-13 * (1 + tt));
+    }
+}
+
+/* derivatives of the map against central differences (h = 1e-7 on O(1)
+ * inputs: error ~1e-14/h + h^2 ~ 1e-7 of the scale at worst; 1e-6 bound) */
+static void test_map_derivatives(void **state)
+{
+    (void)state;
+    uint64_t s = 12;
+    for (int trial = 0; trial < 40; trial++) {
+        double n[3], lam[3], r[3];
+        for (int i = 0; i < 3; i++) {
+            n[i] = test_rand(&s, -1, 1);
+            lam[i] = test_rand(&s, -1, 1);
+            r[i] = test_rand(&s, -0.01, 0.01);
+        }
+        unit(n);
+        const double et = 100, tn = 2.0;
+        ffc_fric f;
+        assert_int_equal(ffc_friction_map(n, lam, r, 10.0, et, tn, &f), FFC_OK);
+        const double ttr = sqrt(f.t[0] * f.t[0] + f.t[1] * f.t[1] + f.t[2] * f.t[2]);
+        /* stick (mu t_N = 2 |T_tr|) or slip (mu t_N = |T_tr| / 2) */
+        const double mu = (trial % 2 ? 0.5 : 2.0) * ttr / tn;
+        assert_int_equal(ffc_friction_map(n, lam, r, mu, et, tn, &f), FFC_OK);
+        assert_int_equal(f.state, trial % 2 ? FFC_FRIC_SLIP : FFC_FRIC_STICK);
+        const double h = 1e-7;
+        double err = 0, scale = 1e-300;
+        for (int j = 0; j < 7; j++) {
+            double np[3], nm[3], rp[3], rm[3], tp = tn, tm = tn;
+            memcpy(np, n, sizeof np); memcpy(nm, n, sizeof nm);
+            memcpy(rp, r, sizeof rp); memcpy(rm, r, sizeof rm);
+            if (j < 3) { rp[j] += h; rm[j] -= h; }
+            else if (j < 6) { np[j - 3] += h; nm[j - 3] -= h; }
+            else { tp += h; tm -= h; }
+            ffc_fric a, b;
+            assert_int_equal(ffc_friction_map(np, lam, rp, mu, et, tp, &a), FFC_OK);
+            assert_int_equal(ffc_friction_map(nm, lam, rm, mu, et, tm, &b), FFC_OK);
+            for (int i = 0; i < 3; i++) {
+                const double fd = (a.t[i] - b.t[i]) / (2 * h);
+                const double an = j < 3 ? f.dt_dr[i][j] : j < 6 ? f.dt_dn[i][j - 3] : f.dt_dtn[i];
+                err = fmax(err, fabs(fd - an));
+                scale = fmax(scale, fabs(an));
+            }
+        }
+        if (!(err <= 1e-6 * scale)) fail_msg("map derivative error %.3g of %.3g (trial %d)", err, scale, trial);
+    }
+}
+
+/* ------------------------------------------------------------ one link */
+typedef struct {
+    int ns, nm;
+    double Xs[6][3], Xs0[6][3], Xsp[6][3], Xm[6][3], Xmp[6][3];
+    double xs[2], w, lambda, lam_t[3];
+    ffc_effects fx;
+    ffc_law law;
+} fcase;
+
+static int fc_eval(const fcase *c, ffc_link_state *st, double R[FFC_MAXDOF], double K[FFC_MAXDOF][FFC_MAXDOF])
+{
+    return ffc_link_contact(&c->fx, c->ns, (const double(*)[3])c->Xs, (const double(*)[3])c->Xs0,
+                            (const double(*)[3])c->Xsp, c->xs, c->w, c->nm, (const double(*)[3])c->Xm,
+                            (const double(*)[3])c->Xmp, c->lambda, c->lam_t, &c->law, st, R, K);
+}
+
+static double *fc_coord(fcase *c, int k)
+{
+    return k < 3 * c->ns ? &c->Xs[k / 3][k % 3] : &c->Xm[(k - 3 * c->ns) / 3][k % 3];
+}
+
+/* a slave point pressed on a (flat or curved) master facet, moved since the
+ * previous step by random increments; regime 1 stick, 2 slip */
+static void fc_make(fcase *c, int ns, int nm, int finite, int regime, uint64_t *s)
+{
+    static const double T3[3][3] = {{0.1, -0.2, 0.3}, {1.3, 0.1, 0.2}, {0.2, 1.1, 0.5}};
+    memset(c, 0, sizeof *c);
+    c->ns = ns;
+    c->nm = nm;
+    c->fx.finite_def = finite;
+    c->fx.friction = 1;
+    if (nm == 3) memcpy(c->Xm, T3, sizeof T3);
+    else test_sphere_facet(1.0, 0.8, c->Xm);
+    for (int a = 0; a < 6; a++)
+        for (int i = 0; i < 3; i++) c->Xm[a][i] += test_rand(s, -0.03, 0.03);
+    ffc_point g;
+    const double xm[2] = {test_rand(s, 0.25, 0.4), test_rand(s, 0.25, 0.4)};
+    ffc_facet_point(nm, (const double(*)[3])c->Xm, xm, &g);
+    c->xs[0] = test_rand(s, 0.15, 0.45);
+    c->xs[1] = test_rand(s, 0.15, 0.4);
+    const double off = test_rand(s, -0.03, -0.005);
+    for (int a = 0; a < ns; a++)
+        for (int i = 0; i < 3; i++) {
+            c->Xs[a][i] = g.x[i] + off * g.n[i] + 0.4 * (test_node_xi[a][1] - c->xs[1]) * g.tau[0][i] +
+                          0.4 * (test_node_xi[a][0] - c->xs[0]) * g.tau[1][i] + test_rand(s, -0.02, 0.02);
+            c->Xs0[a][i] = c->Xs[a][i] + test_rand(s, -0.05, 0.05);
+        }
+    for (int a = 0; a < 6; a++)
+        for (int i = 0; i < 3; i++) {
+            c->Xsp[a][i] = c->Xs[a][i] - test_rand(s, -0.02, 0.02);
+            c->Xmp[a][i] = c->Xm[a][i] - test_rand(s, -0.02, 0.02);
+        }
+    for (int i = 0; i < 3; i++) c->lam_t[i] = test_rand(s, -0.5, 0.5);
+    c->w = 0.5;
+    c->lambda = test_rand(s, 0.0, 1.0);
+    c->law.eps_n = 50.0;
+    c->law.eps_t = 40.0;
+    /* the trial traction with a huge mu (stick), then mu away from the
+     * stick/slip boundary by a factor 2 */
+    c->law.mu = 1e6;
+    ffc_link_state st;
+    double R[FFC_MAXDOF];
+    assert_int_equal(fc_eval(c, &st, R, NULL), FFC_OK);
+    assert_true(st.active && st.fstate == FFC_FRIC_STICK);
+    const double ttr = sqrt(st.t[0] * st.t[0] + st.t[1] * st.t[1] + st.t[2] * st.t[2]);
+    c->law.mu = (regime == FFC_FRIC_STICK ? 2.0 : 0.5) * ttr / st.tn;
+}
+
+/* central differences, h = 1e-6 on unit-size facets (as test_link.c) */
+static void fc_check(fcase *c, int regime)
+{
+    const double h = 1e-6;
+    ffc_link_state st;
+    double R[FFC_MAXDOF], K[FFC_MAXDOF][FFC_MAXDOF];
+    assert_int_equal(fc_eval(c, &st, R, K), FFC_OK);
+    assert_int_equal(st.fstate, regime);
+    const int nd = 3 * (c->ns + c->nm);
+    double err = 0, scale = 0, asym = 0;
+    for (int l = 0; l < nd; l++) {
+        double *x = fc_coord(c, l), x0 = *x, Rp[FFC_MAXDOF], Rm[FFC_MAXDOF];
+        ffc_link_state sp, sm;
+        *x = x0 + h; assert_int_equal(fc_eval(c, &sp, Rp, NULL), FFC_OK);
+        *x = x0 - h; assert_int_equal(fc_eval(c, &sm, Rm, NULL), FFC_OK);
+        *x = x0;
+        assert_int_equal(sp.fstate, regime);
+        assert_int_equal(sm.fstate, regime);
+        for (int k = 0; k < nd; k++) {
+            err = fmax(err, fabs((Rp[k] - Rm[k]) / (2 * h) - K[k][l]));
+            scale = fmax(scale, fabs(K[k][l]));
+            asym = fmax(asym, fabs(K[k][l] - K[l][k]));
+        }
+    }
+    if (!(err <= 1e-6 * scale))
+        fail_msg("friction tangent error %.3g of scale %.3g (ns %d nm %d finite %d regime %d)", err, scale, c->ns,
+                 c->nm, c->fx.finite_def, regime);
+    assert_true(asym > 1e-6 * scale); /* friction makes it non-symmetric */
+}
+
+static void test_link_tangent(void **state)
+{
+    (void)state;
+    uint64_t s = 21;
+    for (int regime = FFC_FRIC_STICK; regime <= FFC_FRIC_SLIP; regime++)
+        for (int finite = 0; finite <= 1; finite++)
+            for (int ns = 3; ns <= 6; ns += 3)
+                for (int nm = 3; nm <= 6; nm += 3)
+                    for (int trial = 0; trial < 3; trial++) {
+                        fcase c;
+                        fc_make(&c, ns, nm, finite, regime, &s);
+                        fc_check(&c, regime);
+                    }
+}
+
+/* mu = 0 with friction on: the frictionless residual and tangent, bit for
+ * bit; and the slave and master forces balance (action = reaction) */
+static void test_link_mu_zero_and_balance(void **state)
+{
+    (void)state;
+    uint64_t s = 22;
+    for (int trial = 0; trial < 8; trial++) {
+        fcase c;
+        fc_make(&c, trial % 2 ? 6 : 3, trial % 4 < 2 ? 3 : 6, trial % 3 == 0, FFC_FRIC_SLIP, &s);
+        ffc_link_state a, b;
+        double Ra[FFC_MAXDOF], Rb[FFC_MAXDOF], Ka[FFC_MAXDOF][FFC_MAXDOF], Kb[FFC_MAXDOF][FFC_MAXDOF];
+        assert_int_equal(fc_eval(&c, &a, Ra, Ka), FFC_OK);
+        const double mu = c.law.mu;
+        c.law.mu = 0.0;
+        assert_int_equal(fc_eval(&c, &b, Rb, Kb), FFC_OK);
+        ffc_link_state n0;
+        double Rn[FFC_MAXDOF], Kn[FFC_MAXDOF][FFC_MAXDOF];
+        assert_int_equal(ffc_link_normal(&c.fx, c.ns, (const double(*)[3])c.Xs, (const double(*)[3])c.Xs0, c.xs, c.w,
+                                         c.nm, (const double(*)[3])c.Xm, c.lambda, c.law.eps_n, &n0, Rn, Kn),
+                         FFC_OK);
+        const int nd = 3 * (c.ns + c.nm);
+        for (int k = 0; k < nd; k++) {
+            assert_true(Rb[k] == Rn[k]);
+            for (int l = 0; l < nd; l++) assert_true(Kb[k][l] == Kn[k][l]);
+        }
+        /* with friction: total force on the link zero in each direction */
+        double sum[3] = {0, 0, 0}, tot = 0;
+        for (int k = 0; k < nd; k++) { sum[k % 3] += Ra[k]; tot += fabs(Ra[k]); }
+        for (int i = 0; i < 3; i++) assert_close(sum[i], 0.0, 1e-14 * tot);
+        /* slip traction on the cone */
+        const double tt = sqrt(a.t[0] * a.t[0] + a.t[1] * a.t[1] + a.t[2] * a.t[2]);
+        assert_close(tt, mu * a.tn, 1e-13 * tt);
+    }
+}
+
+/* --------------------------------------------------- assembled tangents */
+static void scene(double X[], long Fm[], long Fs[])
+{
+    int v = 0;
+    for (int j = 0; j <= 4; j++)
+        for (int i = 0; i <= 4; i++, v++) {
+            double x = i / 4.0 + (i % 4 ? 0.02 * sin(3.0 * j + i) : 0), y = j / 4.0;
+            X[3 * v] = x; X[3 * v + 1] = y; X[3 * v + 2] = 0.02 * sin(2 * x + 1) * cos(3 * y);
+        }
+    for (int j = 0; j <= 3; j++)
+        for (int i = 0; i <= 3; i++, v++) {
+            double x = 0.1 + 0.8 * i / 3.0, y = 0.1 + 0.8 * j / 3.0;
+            X[3 * v] = x; X[3 * v + 1] = y; X[3 * v + 2] = -0.004 + 0.012 * (x - 0.5) + 0.003 * y;
+        }
+    int f = 0;
+    for (int j = 0; j < 4; j++)
+        for (int i = 0; i < 4; i++) {
+            long a = j * 5 + i, b = a + 1, d = a + 5, c = d + 1;
+            long t[6] = {a, b, d, b, c, d};
+            for (int k = 0; k < 6; k++) Fm[6 * f + k] = t[k];
+            f++;
+        }
+    f = 0;
+    for (int j = 0; j < 3; j++)
+        for (int i = 0; i < 3; i++) {
+            long a = 25 + j * 4 + i, b = a + 1, d = a + 4, c = d + 1;
+            long t[6] = {a, d, b, b, d, c};
+            for (int k = 0; k < 6; k++) Fs[6 * f + k] = t[k];
+            f++;
+        }
+}
+
+enum { NV = 41, NFM = 32, NFS = 18, NQ = 3, NL = NFS * NQ, CAP = 400000 };
+
+typedef struct {
+    double X[NV * 3], u[NV * 3], up[NV * 3];
+    long Fm[NFM * 3], Fs[NFS * 3];
+    ffc_link L[NL];
+    double lam[NV > NL ? NV : NL], lam_t[NL * 3];
+    ffc_pair P;
+} ascene;
+
+static void ascene_make(ascene *a, int nodal, uint64_t *s)
+{
+    scene(a->X, a->Fm, a->Fs);
+    double x[NV * 3];
+    for (int i = 0; i < NV * 3; i++) {
+        a->u[i] = test_rand(s, -0.002, 0.002);
+        a->up[i] = a->u[i] - test_rand(s, -0.003, 0.003);
+        x[i] = a->X[i] + a->u[i];
+    }
+    /* press the slave down so that most points are active */
+    for (int v = 25; v < NV; v++) a->u[3 * v + 2] -= 0.004;
+    for (int i = 0; i < NV * 3; i++) x[i] = a->X[i] + a->u[i];
+    ffc_tree *t;
+    assert_int_equal(ffc_tree_build(3, NFM, a->Fm, NV, x, &t), FFC_OK);
+    ffc_search_opts o = ffc_search_defaults();
+    assert_int_equal(ffc_search(t, 3, NFS, a->Fs, NV, x, 2, &o, NL, a->L), NL);
+    ffc_tree_free(t);
+    memset(a->lam, 0, sizeof a->lam);
+    const long nlam = nodal ? NV : NL;
+    for (long k = 0; k < nlam; k++) a->lam[k] = (nodal && k < 25) ? 0.0 : test_rand(s, 0.0, 0.3);
+    for (int k = 0; k < NL * 3; k++) a->lam_t[k] = test_rand(s, -0.05, 0.05);
+    ffc_pair P = {3, NFS, a->Fs, 3, NFM, a->Fm, NV, a->X, a->u, a->up};
+    a->P = P;
+}
+
+/* central differences of the assembled residual, h = 1e-7 against
+ * displacements ~1e-2 (as the nodal test of test_link.c) */
+static void assembled_check(ascene *a, const ffc_effects *fx, const ffc_law *law, int regime)
+{
+    long *Ti = malloc(CAP * sizeof *Ti), *Tj = malloc(CAP * sizeof *Tj), nt, bad;
+    double *Tv = malloc(CAP * sizeof *Tv);
+    static double K[NV * 3][NV * 3];
+    double R[NV * 3] = {0};
+    ffc_stats st;
+    assert_int_equal(ffc_assemble(fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, law, R, CAP, Ti, Tj, Tv, &nt, &st, &bad),
+                     FFC_OK);
+    assert_true(st.active > 0);
+    /* all stick or all slip (counted per link, or per node for the nodal law) */
+    assert_true((regime == FFC_FRIC_STICK ? st.stick : st.slip) > 0);
+    assert_int_equal(regime == FFC_FRIC_STICK ? st.slip : st.stick, 0);
+    memset(K, 0, sizeof K);
+    for (long k = 0; k < nt; k++) K[Ti[k]][Tj[k]] += Tv[k];
+    const double h = 1e-7;
+    double err = 0, scale = 0;
+    for (int l = 0; l < NV * 3; l++) {
+        double Rp[NV * 3] = {0}, Rm[NV * 3] = {0}, u0 = a->u[l];
+        ffc_stats sp, sm;
+        a->u[l] = u0 + h;
+        assert_int_equal(ffc_assemble(fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, law, Rp, 0, NULL, NULL, NULL, &nt, &sp,
+                                      &bad), FFC_OK);
+        a->u[l] = u0 - h;
+        assert_int_equal(ffc_assemble(fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, law, Rm, 0, NULL, NULL, NULL, &nt, &sm,
+                                      &bad), FFC_OK);
+        a->u[l] = u0;
+        assert_int_equal(sp.active, st.active);
+        assert_int_equal(sm.active, st.active);
+        assert_int_equal(sp.stick, st.stick);
+        assert_int_equal(sm.stick, st.stick);
+        for (int k = 0; k < NV * 3; k++) {
+            err = fmax(err, fabs((Rp[k] - Rm[k]) / (2 * h) - K[k][l]));
+            scale = fmax(scale, fabs(K[k][l]));
+        }
+    }
+    if (!(err <= 1e-6 * scale))
+        fail_msg("assembled friction tangent error %.3g of scale %.3g (nodal %d, stick %ld slip %ld)", err, scale,
+                 law->nodal, st.stick, st.slip);
+    free(Ti); free(Tj); free(Tv);
+}
+
+static void test_assembled_tangent(void **state)
+{
+    (void)state;
+    uint64_t s = 23;
+    for (int nodal = 0; nodal <= 1; nodal++)
+        for (int finite = 0; finite <= 1; finite++) {
+            ascene *a = malloc(sizeof *a);
+            ascene_make(a, nodal, &s);
+            ffc_effects fx = {1, 0, finite};
+            /* all stick (a huge mu), all slip (eps_T |r| >> mu t_N) */
+            ffc_law stick = {60, nodal, 0, 1e6, 5.0};
+            assembled_check(a, &fx, &stick, FFC_FRIC_STICK);
+            ffc_law slip = {60, nodal, 0, 0.3, 2000.0};
+            assembled_check(a, &fx, &slip, FFC_FRIC_SLIP);
+            free(a);
+        }
+}
+
+/* Uzawa update: lam_t becomes the traction (tangent, inside the cone);
+ * friction off or mu = 0 leaves the frictionless result unchanged */
+static void test_augment(void **state)
+{
+    (void)state;
+    uint64_t s = 24;
+    for (int nodal = 0; nodal <= 1; nodal++) {
+        ascene *a = malloc(sizeof *a);
+        ascene_make(a, nodal, &s);
+        ffc_effects fx = {1, 0, 0};
+        ffc_law law = {60, nodal, 0, 0.3, 30.0};
+        double P[NL * FFC_POINT_COLS];
+        long bad;
+        assert_int_equal(ffc_points(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &law, P, &bad), FFC_OK);
+        ffc_stats st;
+        assert_int_equal(ffc_augment(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &law, &st, &bad), FFC_OK);
+        assert_true(st.active > 0 && (nodal ? st.stick + st.slip > 0 : st.stick + st.slip == st.active));
+        assert_true(st.max_dlam_t > 0);
+        double ft[3] = {0, 0, 0};
+        for (int k = 0; k < NL; k++) {
+            const double *row = P + k * FFC_POINT_COLS;
+            if (row[5] > 0)
+                for (int i = 0; i < 3; i++) ft[i] += row[8 + i] * row[6];
+            if (nodal) continue;
+            /* pointwise: the update is the traction the point reported (on
+             * the slave: -T), inside the cone of its pressure */
+            const double *t = a->lam_t + 3 * k;
+            for (int i = 0; i < 3; i++) assert_close(t[i], -row[8 + i], 1e-14);
+            const double tt = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+            assert_true(tt <= 0.3 * row[4] * (1 + 1e-13));
+            if (!(row[5] > 0)) assert_true(tt == 0.0);
+        }
+        if (nodal) /* nodal: inside the cone of the updated nodal pressure */
+            for (int v = 0; v < NV; v++) {
+                const double *t = a->lam_t + 3 * v;
+                const double tt = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+                assert_true(tt <= 0.3 * a->lam[v] * (1 + 1e-13));
+            }
+        for (int i = 0; i < 3; i++) assert_close(ft[i], st.force_t[i], 1e-13);
+        /* mu = 0 (friction on) equals friction off */
+        ffc_law l0 = law, l1 = law;
+        l0.mu = 0.0;
+        ffc_effects off = {0, 0, 0};
+        double R0[NV * 3] = {0}, R1[NV * 3] = {0};
+        long nt;
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &l0, R0, 0, NULL, NULL, NULL, &nt, &st, &bad), FFC_OK);
+        assert_int_equal(ffc_assemble(&off, &a->P, 2, NL, a->L, a->lam, NULL, &l1, R1, 0, NULL, NULL, NULL, &nt, &st, &bad), FFC_OK);
+        for (int i = 0; i < NV * 3; i++) assert_true(R0[i] == R1[i]);
+        /* bad input: negative mu, zero eps_t, non-finite history */
+        ffc_law bad_mu = law, bad_et = law;
+        bad_mu.mu = -0.1;
+        bad_et.eps_t = 0.0;
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &bad_mu, R0, 0, NULL, NULL, NULL, &nt, &st, &bad), FFC_ERR_VALUE);
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &bad_et, R0, 0, NULL, NULL, NULL, &nt, &st, &bad), FFC_ERR_VALUE);
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, NULL, &law, R0, 0, NULL, NULL, NULL, &nt, &st, &bad), FFC_ERR_NULL);
+        a->lam_t[7] = NAN;
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &law, R0, 0, NULL, NULL, NULL, &nt, &st, &bad), FFC_ERR_NONFINITE);
+        assert_int_equal(bad, 2);
+        free(a);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_map_regimes),
+        cmocka_unit_test(test_map_limits),
+        cmocka_unit_test(test_map_properties),
+        cmocka_unit_test(test_map_derivatives),
+        cmocka_unit_test(test_link_tangent),
+        cmocka_unit_test(test_link_mu_zero_and_balance),
+        cmocka_unit_test(test_assembled_tangent),
+        cmocka_unit_test(test_augment),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
