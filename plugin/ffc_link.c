@@ -166,17 +166,16 @@ static void link_slip_deriv(const lgeo_t *g, const double Xm[][3], const double 
 }
 
 /* Formulation (friction at one link, traction T held fixed).  Residual
- * R_f = da S^T T: the friction force acts at the current foot, with S as
- * in link_slip_deriv.  Its derivative at fixed T:
+ * R_f = da S^T T, i.e. R_f[k] = da sw[k] T[k % 3]: the friction force acts
+ * at the current foot, with S as in link_slip_deriv.  Its derivative at
+ * fixed T, added into K here:
  *     - da [master b] T (N2_b,alpha dxi_alpha/du)^T   (foot sliding in S)
  *     + S^T T dda^T                                    (area)
- * (skipped with material_only). */
+ * (callers skip it with material_only). */
 static void link_friction_geo(const lgeo_t *g, double da, const double sw[FFC_MAXDOF], const double T[3],
-                              int material_only, double R[FFC_MAXDOF], double K[FFC_MAXDOF][FFC_MAXDOF])
+                              double K[FFC_MAXDOF][FFC_MAXDOF])
 {
     const int ns = g->ns, nd = g->nd;
-    for (int k = 0; k < nd; k++) R[k] += da * sw[k] * T[k % 3];
-    if (!K || material_only) return;
     for (int k = 3 * ns; k < nd; k++) {
         const int b = (k - 3 * ns) / 3;
         for (int l = 0; l < nd; l++)
@@ -200,9 +199,12 @@ static void link_friction(const lgeo_t *g, const ffc_link_state *st, const doubl
     const double da = st->da;
     double sw[FFC_MAXDOF], Q[3][FFC_MAXDOF];
     link_slip_deriv(g, Xm, Xmp, material_only, sw, Q);
-    link_friction_geo(g, da, sw, f->t, material_only, R, K);
-    for (int k = 0; k < nd; k++) F[k] = da * sw[k] * f->dt_dtn[k % 3];
+    for (int k = 0; k < nd; k++) {
+        R[k] += da * sw[k] * f->t[k % 3];
+        F[k] = da * sw[k] * f->dt_dtn[k % 3];
+    }
     if (!K) return;
+    if (!material_only) link_friction_geo(g, da, sw, f->t, K);
     double dT[3][FFC_MAXDOF];
     for (int l = 0; l < nd; l++)
         for (int i = 0; i < 3; i++) {
@@ -367,12 +369,18 @@ static void stats_init(ffc_stats *s)
     memset(s, 0, sizeof *s);
 }
 
-/* an active point: pressure t at area da, and its friction state */
-static void stats_active(ffc_stats *s, double t, const ffc_link_state *st, int fric)
+/* a point pressed by t > 0 over the area da, normal n */
+static void stats_pressure(ffc_stats *s, double t, double da, const double n[3])
 {
     s->active++;
     if (t > s->max_tn) s->max_tn = t;
-    for (int i = 0; i < 3; i++) s->force[i] += t * st->da * st->n[i];
+    for (int i = 0; i < 3; i++) s->force[i] += t * da * n[i];
+}
+
+/* an active point (pointwise law): pressure t, and its friction state */
+static void stats_active(ffc_stats *s, double t, const ffc_link_state *st, int fric)
+{
+    stats_pressure(s, t, st->da, st->n);
     if (!fric) return;
     s->stick += st->fstate == FFC_FRIC_STICK;
     s->slip += st->fstate == FFC_FRIC_SLIP;
@@ -627,6 +635,14 @@ static void nodal_point_traction(const ffc_pair *P, const ffc_link *lk, const nl
     }
 }
 
+/* statistics of a linked point of the nodal law: pressure t (counted when
+ * > 0) and friction traction Tq */
+static void nodal_point_stats(ffc_stats *s, double t, const nlink_t *e, const double Tq[3])
+{
+    if (t > 0.0) stats_pressure(s, t, e->da, e->n);
+    for (int i = 0; i < 3; i++) s->force_t[i] -= Tq[i] * e->da;
+}
+
 static int emit(long *nt, long cap, long Ti[], long Tj[], double Tv[], long i, long j, double v)
 {
     if (*nt < cap) { Ti[*nt] = i; Tj[*nt] = j; Tv[*nt] = v; }
@@ -709,23 +725,11 @@ static int assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double
         if (fric) nodal_point_traction(P, lk, E, w.T, Tq, &fs);
         const int has_t = fric && (Tq[0] != 0.0 || Tq[1] != 0.0 || Tq[2] != 0.0);
         if (!(t > 0.0) && !has_t) continue;
-        if (t > 0.0) {
-            stats->active++;
-            if (t > stats->max_tn) stats->max_tn = t;
-            for (int i = 0; i < 3; i++) stats->force[i] += t * E->da * E->n[i];
-        }
+        nodal_point_stats(stats, t, E, Tq);
         for (int a = 0; a < E->nd; a++) R[E->dof[a]] -= t * E->da * E->G[a];
-        for (int i = 0; i < 3; i++) stats->force_t[i] -= Tq[i] * E->da;
-        if (!want_k || material_only) {
-            if (has_t) {
-                double Rf[FFC_MAXDOF] = {0};
-                lgeo_t g;
-                g.ns = P->ns; g.nm = P->nm; g.nd = E->nd;
-                link_friction_geo(&g, E->da, w.F[e].sw, Tq, 1, Rf, NULL);
-                for (int a = 0; a < E->nd; a++) R[E->dof[a]] += Rf[a];
-            }
-            continue;
-        }
+        if (has_t)
+            for (int a = 0; a < E->nd; a++) R[E->dof[a]] += E->da * w.F[e].sw[a] * Tq[a % 3];
+        if (!want_k || material_only) continue;
         lnodes_t ln;
         s = gather_link(P, nq, lk, &ln);
         ffc_link_state sg;
@@ -735,11 +739,7 @@ static int assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double
         if (s) { *bad = E->k; nodal_free(&w); return s; }
         for (int a = 0; a < E->nd; a++)
             for (int b = 0; b < E->nd; b++) D[a][b] = -t * (E->da * D[a][b] + E->G[a] * E->dda[b]);
-        if (has_t) {
-            double Rf[FFC_MAXDOF] = {0};
-            link_friction_geo(&g, E->da, w.F[e].sw, Tq, 0, Rf, D);
-            for (int a = 0; a < E->nd; a++) R[E->dof[a]] += Rf[a];
-        }
+        if (has_t) link_friction_geo(&g, E->da, w.F[e].sw, Tq, D);
         for (int a = 0; a < E->nd; a++)
             for (int b = 0; b < E->nd; b++)
                 if (D[a][b] != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, E->dof[a], E->dof[b], D[a][b]);
@@ -885,14 +885,10 @@ int ffc_augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
         for (long e = 0; e < w.n; e++) {
             const double t = nodal_point_pressure(pair, &links[w.L[e].k], &w.L[e], w.tn);
             if (!(t > 0.0)) continue;
-            stats->active++;
-            if (t > stats->max_tn) stats->max_tn = t;
-            for (int i = 0; i < 3; i++) stats->force[i] += t * w.L[e].da * w.L[e].n[i];
-            if (!fric) continue;
-            double Tq[3];
+            double Tq[3] = {0, 0, 0};
             int fs;
-            nodal_point_traction(pair, &links[w.L[e].k], &w.L[e], w.T, Tq, &fs);
-            for (int i = 0; i < 3; i++) stats->force_t[i] -= Tq[i] * w.L[e].da;
+            if (fric) nodal_point_traction(pair, &links[w.L[e].k], &w.L[e], w.T, Tq, &fs);
+            nodal_point_stats(stats, t, &w.L[e], Tq);
         }
         for (long v = 0; v < pair->nv; v++) {
             double d = fabs(w.tn[v] - lambda[v]);

@@ -727,19 +727,19 @@ void link_error(const char *fn, int st, long bad)
 // and lambdaT (3 tangential multipliers per link) are the frictional ones.
 long assemble(const char *fn, pmesh3 pTh, KN<double> *u, KN<double> *up, KN<long> *CP, KNM<double> *L,
               KN<double> *lam, KN<double> *lamT, KN<double> *opt, KN<double> *R, Matrice_Creuse<double> *K,
-              bool history_form)
+              bool tangent, bool history_form)
 {
     Options o = need_options(fn, opt);
     LinkCall c;
     need_links(fn, pTh, u, CP, L, lam, o, c, up, lamT, history_form);
     const long n = 3 * c.nn;
     need_size(fn, "R", R, n);
-    if (K == nullptr && std::string(fn) == "ffcAssemble") fail(fn, "argument 'K': matrix is not defined");
+    if (tangent && !K) fail(fn, "argument 'K': matrix is not defined");
     std::vector<double> Rc(n, 0.0);
     ffc_stats st;
     long nt = 0, bad = -1;
     int rc;
-    if (!K) {
+    if (!tangent) {
         rc = ffc_assemble(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], c.lam_t, &o.law, Rc.data(), 0,
                           nullptr, nullptr, nullptr, &nt, &st, &bad);
         if (rc) link_error(fn, rc, bad);
@@ -775,14 +775,14 @@ long ffcAssemble(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
                  KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
                  KN<double> *const &R, Matrice_Creuse<double> *const &K)
 {
-    return assemble("ffcAssemble", pTh, u, nullptr, CP, L, lam, nullptr, opt, R, K, false);
+    return assemble("ffcAssemble", pTh, u, nullptr, CP, L, lam, nullptr, opt, R, K, true, false);
 }
 
 long ffcAssembleF(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
                   KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &lamT,
                   KN<double> *const &opt, KN<double> *const &R, Matrice_Creuse<double> *const &K)
 {
-    return assemble("ffcAssemble", pTh, u, up, CP, L, lam, lamT, opt, R, K, true);
+    return assemble("ffcAssemble", pTh, u, up, CP, L, lam, lamT, opt, R, K, true, true);
 }
 
 // ffcResidual(Th, u, [uprev,] CP, L, lambda, [lambdaT,] opt, R): adds the
@@ -792,14 +792,14 @@ long ffcResidual(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
                  KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
                  KN<double> *const &R)
 {
-    return assemble("ffcResidual", pTh, u, nullptr, CP, L, lam, nullptr, opt, R, nullptr, false);
+    return assemble("ffcResidual", pTh, u, nullptr, CP, L, lam, nullptr, opt, R, nullptr, false, false);
 }
 
 long ffcResidualF(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
                   KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &lamT,
                   KN<double> *const &opt, KN<double> *const &R)
 {
-    return assemble("ffcResidual", pTh, u, up, CP, L, lam, lamT, opt, R, nullptr, true);
+    return assemble("ffcResidual", pTh, u, up, CP, L, lam, lamT, opt, R, nullptr, false, true);
 }
 
 const long S_SIZE = 16;

@@ -66,4 +66,39 @@ static inline void test_sphere_facet(double R, double span, double X[6][3])
     }
 }
 
+/* A contact pair of 41 nodes: a wavy 5 x 5 master grid (nodes 0..24, 32
+ * facets, normals up) and a tilted 4 x 4 slave grid just below z = 0
+ * (nodes 25..40, 18 facets, normals down), overlapping the master: part
+ * of the slave points penetrate, part are open. */
+static inline void test_pair_scene(double X[], long Fm[], long Fs[])
+{
+    int v = 0;
+    for (int j = 0; j <= 4; j++)
+        for (int i = 0; i <= 4; i++, v++) {
+            double x = i / 4.0 + (i % 4 ? 0.02 * sin(3.0 * j + i) : 0), y = j / 4.0;
+            X[3 * v] = x; X[3 * v + 1] = y; X[3 * v + 2] = 0.02 * sin(2 * x + 1) * cos(3 * y);
+        }
+    for (int j = 0; j <= 3; j++)
+        for (int i = 0; i <= 3; i++, v++) {
+            double x = 0.1 + 0.8 * i / 3.0, y = 0.1 + 0.8 * j / 3.0;
+            X[3 * v] = x; X[3 * v + 1] = y; X[3 * v + 2] = -0.004 + 0.012 * (x - 0.5) + 0.003 * y;
+        }
+    int f = 0;
+    for (int j = 0; j < 4; j++)
+        for (int i = 0; i < 4; i++) {
+            long a = j * 5 + i, b = a + 1, d = a + 5, c = d + 1;
+            long t[6] = {a, b, d, b, c, d};
+            for (int k = 0; k < 6; k++) Fm[6 * f + k] = t[k];
+            f++;
+        }
+    f = 0;
+    for (int j = 0; j < 3; j++)
+        for (int i = 0; i < 3; i++) {
+            long a = 25 + j * 4 + i, b = a + 1, d = a + 4, c = d + 1;
+            long t[6] = {a, d, b, b, d, c};  /* reversed: normals down */
+            for (int k = 0; k < 6; k++) Fs[6 * f + k] = t[k];
+            f++;
+        }
+}
+
 #endif

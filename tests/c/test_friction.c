@@ -301,37 +301,6 @@ static void test_link_mu_zero_and_balance(void **state)
 }
 
 /* --------------------------------------------------- assembled tangents */
-static void scene(double X[], long Fm[], long Fs[])
-{
-    int v = 0;
-    for (int j = 0; j <= 4; j++)
-        for (int i = 0; i <= 4; i++, v++) {
-            double x = i / 4.0 + (i % 4 ? 0.02 * sin(3.0 * j + i) : 0), y = j / 4.0;
-            X[3 * v] = x; X[3 * v + 1] = y; X[3 * v + 2] = 0.02 * sin(2 * x + 1) * cos(3 * y);
-        }
-    for (int j = 0; j <= 3; j++)
-        for (int i = 0; i <= 3; i++, v++) {
-            double x = 0.1 + 0.8 * i / 3.0, y = 0.1 + 0.8 * j / 3.0;
-            X[3 * v] = x; X[3 * v + 1] = y; X[3 * v + 2] = -0.004 + 0.012 * (x - 0.5) + 0.003 * y;
-        }
-    int f = 0;
-    for (int j = 0; j < 4; j++)
-        for (int i = 0; i < 4; i++) {
-            long a = j * 5 + i, b = a + 1, d = a + 5, c = d + 1;
-            long t[6] = {a, b, d, b, c, d};
-            for (int k = 0; k < 6; k++) Fm[6 * f + k] = t[k];
-            f++;
-        }
-    f = 0;
-    for (int j = 0; j < 3; j++)
-        for (int i = 0; i < 3; i++) {
-            long a = 25 + j * 4 + i, b = a + 1, d = a + 4, c = d + 1;
-            long t[6] = {a, d, b, b, d, c};
-            for (int k = 0; k < 6; k++) Fs[6 * f + k] = t[k];
-            f++;
-        }
-}
-
 enum { NV = 41, NFM = 32, NFS = 18, NQ = 3, NL = NFS * NQ, CAP = 400000 };
 
 typedef struct {
@@ -344,7 +313,7 @@ typedef struct {
 
 static void ascene_make(ascene *a, int nodal, uint64_t *s)
 {
-    scene(a->X, a->Fm, a->Fs);
+    test_pair_scene(a->X, a->Fm, a->Fs);
     double x[NV * 3];
     for (int i = 0; i < NV * 3; i++) {
         a->u[i] = test_rand(s, -0.002, 0.002);

@@ -277,44 +277,13 @@ static void test_assemble_augment(void **state)
 /* master: a wavy 4 x 4 grid on [0,1]^2 (nodes 0..24); slave: a reversed
  * 3 x 3 grid on [0.1,0.9]^2 just below it (nodes 25..40), tilted so that
  * part of it penetrates and part is open */
-static void nodal_scene(double X[], long Fm[], long Fs[])
-{
-    int v = 0;
-    for (int j = 0; j <= 4; j++)
-        for (int i = 0; i <= 4; i++, v++) {
-            double x = i / 4.0 + (i % 4 ? 0.02 * sin(3.0 * j + i) : 0), y = j / 4.0;
-            X[3 * v] = x; X[3 * v + 1] = y; X[3 * v + 2] = 0.02 * sin(2 * x + 1) * cos(3 * y);
-        }
-    for (int j = 0; j <= 3; j++)
-        for (int i = 0; i <= 3; i++, v++) {
-            double x = 0.1 + 0.8 * i / 3.0, y = 0.1 + 0.8 * j / 3.0;
-            X[3 * v] = x; X[3 * v + 1] = y; X[3 * v + 2] = -0.004 + 0.012 * (x - 0.5) + 0.003 * y;
-        }
-    int f = 0;
-    for (int j = 0; j < 4; j++)
-        for (int i = 0; i < 4; i++) {
-            long a = j * 5 + i, b = a + 1, d = a + 5, c = d + 1;
-            long t[6] = {a, b, d, b, c, d};
-            for (int k = 0; k < 6; k++) Fm[6 * f + k] = t[k];
-            f++;
-        }
-    f = 0;
-    for (int j = 0; j < 3; j++)
-        for (int i = 0; i < 3; i++) {
-            long a = 25 + j * 4 + i, b = a + 1, d = a + 4, c = d + 1;
-            long t[6] = {a, d, b, b, d, c};  /* reversed: normals down */
-            for (int k = 0; k < 6; k++) Fs[6 * f + k] = t[k];
-            f++;
-        }
-}
-
 static void test_nodal_tangent(void **state)
 {
     (void)state;
     enum { NV = 41, NFM = 32, NFS = 18 };
     double X[NV * 3], u[NV * 3], x[NV * 3];
     long Fm[NFM * 3], Fs[NFS * 3];
-    nodal_scene(X, Fm, Fs);
+    test_pair_scene(X, Fm, Fs);
     uint64_t s = 17;
     for (int i = 0; i < NV * 3; i++) u[i] = test_rand(&s, -0.002, 0.002);
     for (int i = 0; i < NV * 3; i++) x[i] = X[i] + u[i];
