@@ -182,7 +182,11 @@ int ffc_surface_normals(int nn, long nf, const long F[], long nv,
  * closest point on the master surface (exact: a bounding-volume tree with
  * branch-and-bound), classified as interior, on an edge or vertex shared by
  * master facets (a link with the foot clamped there), or beyond the edge of
- * the master surface (outside the footprint: no link). */
+ * the master surface (outside the footprint: no link).  A point counts as
+ * beyond the edge when its distance past the rim, in the tangent plane of
+ * the facet, exceeds edge_tol h_f plus its penetration max(0, -g): a
+ * penetrating point in a symmetry plane, whose foot on a tilted facet
+ * falls just past the rim, keeps its link. */
 
 typedef struct {
     double capture_rel;  /* capture distance relative to the partner master
@@ -247,6 +251,12 @@ int ffc_search(const ffc_tree *t, int nns, long nfs, const long Fs[],
 int ffc_search_brute(const ffc_tree *t, int nns, long nfs, const long Fs[],
                      long nvs, const double xs_nodes[], int qdeg,
                      const ffc_search_opts *o, long cap, ffc_link links[]);
+
+/* Links of np points p[np*3] (e.g. slave nodes) against the tree, with
+ * the footprint and capture rules of ffc_search; links[k].sf = k, q = 0.
+ * Returns the number of points with a partner, or an error. */
+int ffc_search_points(const ffc_tree *t, long np, const double p[],
+                      const ffc_search_opts *o, ffc_link links[]);
 
 /* ------------------------------------------------ normal contact links */
 /* Augmented-Lagrangian normal contact (after Laursen; the seed's
@@ -431,6 +441,115 @@ int ffc_points_vtk(const char *path, long n, const double P[]);
  * FFC_ERR_VALUE if the file cannot be written. */
 int ffc_write_columns(const char *path, const char *header, long n, int ncol,
                       const double A[], const double mask[]);
+
+/* ------------------------------------- node-to-surface Lagrange multipliers */
+/* Each slave node c is paired with the master facet (i, j, k) under it:
+ * area coordinates L of the foot, unit master normal n, gap
+ * g = n . (x_c - sum_a L_a x_a).  With the relative displacement
+ * D u = u_c - sum_a L_a u_a (3 x ndof), the constraint rows are
+ *   slide:  n^T D u = n^T D u^k - g^k        (one row: the linearized gap
+ *                                             vanishes; exact for flat facets)
+ *   stick:  the slide row and t_i^T D u = t_i^T D u^n, i = 1, 2  (no
+ *           tangential motion over the master since the last converged
+ *           step u^n; t_1, t_2 an orthonormal tangent basis of n)
+ *   open:   none.
+ * The saddle-point system  [K  Bf^T; B  0] [u; m] = [f; c]  gives the
+ * multipliers m; the contact force on the slave node is -(Bf^T m) at its
+ * dofs: F = -m_n n - m_1 t_1 - m_2 t_2 in stick, and in slide
+ * F = -m_n (n - nu_d d) (Bf's row is (n - nu_d d)^T D: a sliding node
+ * carries the friction force nu_d F_n against its sliding direction d,
+ * with F_n = -m_n); all scaled by law->scale.  B = Bf without friction
+ * (symmetric system).
+ * Transitions (ffc_nts_update): open -> contact when g < -gtol (stick if
+ * nu_s > 0, else slide); contact -> open when F_n < -ftol max F_n
+ * (tension release); stick -> slide when |F_t| > nu_s F_n (d = -F_t/|F_t|);
+ * slide -> stick when the tangential slip since the last converged step
+ * points against d.  Chattering guard: once a node has changed state
+ * max_flips times in one load step, each update makes one change only,
+ * at the first node in order that asks for one (the least-index rule,
+ * which terminates for frictionless contact, a P-matrix complementarity
+ * problem, where changing every violated node at once may cycle). */
+enum { FFC_NTS_OPEN = 0, FFC_NTS_STICK = 1, FFC_NTS_SLIDE = 2 };
+
+typedef struct {
+    double nu_s;       /* static friction coefficient (1), >= 0 */
+    double nu_d;       /* dynamic friction coefficient (1), 0 <= nu_d <= nu_s */
+    double gtol;       /* an open node enters contact when g < -gtol (length), >= 0 */
+    double ftol;       /* tension release when F_n < -ftol * max F_n (1), >= 0 */
+    int max_flips;     /* state changes of a node per load step before the
+                          chattering guard acts (>= 1) */
+    double scale;      /* rows and right-hand sides are multiplied by scale (force/length,
+                          e.g. E h: balances the saddle-point matrix); > 0 */
+} ffc_nts_law;
+
+/* One slave node: its state (carried across iterations and steps) and its
+ * geometry and force (refreshed by each call). */
+typedef struct {
+    long node;         /* slave node (pair numbering) */
+    double area;       /* tributary area int N_c dA on the slave surface (length^2) */
+    int state;         /* FFC_NTS_* */
+    int flips;         /* state changes in the current load step */
+    int chatter;       /* 1 once the node reached max_flips changes in this step */
+    double dir[3];     /* sliding direction d of the slave over the master (1) */
+    long mf;           /* master facet under the node, -1 for none */
+    double L[3];       /* area coordinates of the foot (1) */
+    double n[3];       /* unit master normal at the foot (1) */
+    double gap;        /* g (length) */
+    double slip[3];    /* tangential motion over the master since u^n (length) */
+    long row;          /* first constraint row, -1 for none */
+    int rmask;         /* rows present: bit 0 normal, bits 1, 2 tangents (stick) */
+    double nr[3];      /* normal the rows were built with (1) */
+    double f[3];       /* contact force on the slave node (force) */
+    double fn;         /* its normal part n_r . f, > 0 compressive (force) */
+} ffc_nts_node;
+
+/* Summary of an update. */
+typedef struct {
+    long changes;      /* state changes made by this update */
+    long open, stick, slide; /* nodes in each state after it */
+    long chatter;      /* nodes that reached max_flips: the guard acts (one change per update) */
+    long released;     /* contact -> open changes in this update */
+    double max_pen;    /* largest penetration max(0, -g) over contact nodes (length) */
+    double min_fn;     /* smallest F_n over the nodes that had rows (force; 0 if none):
+                          negative when a node was released */
+    double min_gap_open; /* smallest gap over open nodes with a partner (length; 0 if none) */
+    double max_ddir;   /* largest change |d_new - d_old| of a sliding direction (1) */
+    double force[3];   /* total contact force on the slave nodes (force) */
+    double max_ratio;  /* largest |F_t| / F_n over contact nodes (1) */
+    double max_gap_err; /* largest |g| over nodes that had rows and stay in contact:
+                          the geometric error of the linearized rows (length) */
+} ffc_nts_stats;
+
+/* The distinct nodes of the slave facets of pair (3-node facets), in
+ * ascending order, with their tributary areas in the reference
+ * configuration; state open.  cap: capacity of out[].  Returns the
+ * number of nodes (FFC_ERR_CAPACITY with *need set when cap is short). */
+long ffc_nts_nodes(const ffc_pair *pair, long cap, ffc_nts_node out[], long *need);
+
+/* Pairs each node with the master facet under it at x = X + u (search
+ * options o, NULL for the defaults) and refreshes mf, L, n, gap and
+ * slip (against pair->u_prev; zero when it is NULL).  With init != 0 the
+ * state is also set: contact (stick if law->nu_s > 0, else slide) when
+ * g <= law->gtol, open otherwise. */
+int ffc_nts_locate(const ffc_pair *pair, const ffc_nts_law *law, const ffc_search_opts *o,
+                   int init, long nn, ffc_nts_node nodes[]);
+
+/* Constraint rows of the contact nodes (geometry of the last locate), as
+ * triplets (Bi, Bj) with values Bv (B) and Fv (Bf), and right-hand side
+ * c[]; entries on dofs with fixed[dof] != 0 (Dirichlet; fixed may be
+ * NULL) are moved to c with the value in pair->u, and a row left empty
+ * is dropped.  cap: capacity of the triplet arrays, ccap of c.
+ * Writes *ntrip and *nrows (or the sizes needed with FFC_ERR_CAPACITY)
+ * and each node's row and nr. */
+int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixed[],
+                 long nn, ffc_nts_node nodes[], long cap, long Bi[], long Bj[],
+                 double Bv[], double Fv[], long ccap, double c[], long *ntrip, long *nrows);
+
+/* After a solve: forces from the multipliers m[nrows] of the rows built
+ * last, then the transitions (see above) with the geometry of the last
+ * locate (call ffc_nts_locate at the new displacement first). */
+int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn,
+                   ffc_nts_node nodes[], ffc_nts_stats *st);
 
 /* ------------------------------------------------- quadratic tetrahedra */
 /* Numbers the nodes of P2 tetrahedra T[nt*4] (nv vertices) as FreeFEM

@@ -480,7 +480,13 @@ static void make_link(const ffc_tree *t, const cand_t *c, const double p[3],
     if (pr->where != FFC_FOOT_INSIDE && outside(pr->xi_free) > o->edge_tol) {
         int rim = pr->where <= FFC_FOOT_EDGE2 ? t->nbr[c->f * 3 + pr->where - FFC_FOOT_EDGE0] < 0
                                               : t->vrim[c->f * 3 + pr->where - FFC_FOOT_VERTEX0];
-        if (rim) return;
+        /* how far beyond the rim, in the facet's tangent plane: a penetrating
+         * point that overshoots by less than its depth is at the rim, not
+         * past it (a node in a symmetry plane that penetrates a tilted
+         * facet projects slightly beyond the rim) */
+        const double over2 = pr->dist * pr->dist - pr->gap * pr->gap;
+        const double over = over2 > 0 ? sqrt(over2) : 0.0;
+        if (rim && over > o->edge_tol * t->hf[c->f] + fmax(0.0, -pr->gap)) return;
     }
     if (pr->dist > fmax(o->capture_abs, o->capture_rel * t->hf[c->f])) return;
     lk->mf = c->f;
@@ -540,6 +546,35 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
             make_link(t, &best, p, o, lk);
             if (lk->mf >= 0) found++;
         }
+    }
+    return found <= 2147483647L ? (int)found : FFC_ERR_SIZE;
+}
+
+int ffc_search_points(const ffc_tree *t, long np, const double p[],
+                      const ffc_search_opts *o, ffc_link links[])
+{
+    if (!t || !p || !links) return FFC_ERR_NULL;
+    if (np <= 0) return FFC_ERR_EMPTY;
+    ffc_search_opts def = ffc_search_defaults();
+    if (!o) o = &def;
+    if (!(o->capture_rel >= 0) || !(o->capture_abs >= 0) || !(o->edge_tol >= 0) ||
+        isinf(o->capture_rel) || isinf(o->capture_abs))
+        return FFC_ERR_VALUE;
+    const double rmax = fmax(o->capture_abs, o->capture_rel * t->hmax);
+    long found = 0, warm = -1;
+    for (long k = 0; k < np; k++) {
+        const double *x = p + 3 * k;
+        for (int i = 0; i < 3; i++)
+            if (!isfinite(x[i])) return FFC_ERR_NONFINITE;
+        cand_t best;
+        nearest(t, x, rmax, warm, &best);
+        if (best.f >= 0) warm = best.f;
+        ffc_link *lk = links + k;
+        lk->sf = k;
+        lk->q = 0;
+        lk->xs[0] = lk->xs[1] = 0.0;
+        make_link(t, &best, x, o, lk);
+        if (lk->mf >= 0) found++;
     }
     return found <= 2147483647L ? (int)found : FFC_ERR_SIZE;
 }

@@ -894,6 +894,304 @@ long ffcPointsF(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, 
     return points("ffcPoints", pTh, u, up, CP, L, lam, lamT, opt, P, true);
 }
 
+// ---------------------------------------------------------------------------
+// Node-to-surface contact with Lagrange multipliers.
+// Node table N (real[int,int], one row per slave node), columns in the
+// order of ffc_nts_node: node, area, state, flips, chatter, dir (3), master
+// facet, L (3), n (3), gap, slip (3), row, rmask, nr (3), f (3), fn.
+const long NTS_COLS = 28;
+
+void nts_to_row(const ffc_nts_node &d, KNM<double> &N, long k)
+{
+    const double v[NTS_COLS] = {(double)d.node, d.area, (double)d.state, (double)d.flips, (double)d.chatter,
+                                d.dir[0], d.dir[1], d.dir[2], (double)d.mf, d.L[0], d.L[1], d.L[2],
+                                d.n[0], d.n[1], d.n[2], d.gap, d.slip[0], d.slip[1], d.slip[2],
+                                (double)d.row, (double)d.rmask, d.nr[0], d.nr[1], d.nr[2],
+                                d.f[0], d.f[1], d.f[2], d.fn};
+    for (long j = 0; j < NTS_COLS; j++) N(k, j) = v[j];
+}
+
+void nts_from_row(const KNM<double> &N, long k, ffc_nts_node &d)
+{
+    double v[NTS_COLS];
+    for (long j = 0; j < NTS_COLS; j++) v[j] = N(k, j);
+    d.node = (long)v[0]; d.area = v[1]; d.state = (int)v[2]; d.flips = (int)v[3]; d.chatter = (int)v[4];
+    for (int i = 0; i < 3; i++) {
+        d.dir[i] = v[5 + i]; d.L[i] = v[9 + i]; d.n[i] = v[12 + i]; d.slip[i] = v[16 + i];
+        d.nr[i] = v[21 + i]; d.f[i] = v[24 + i];
+    }
+    d.mf = (long)v[8]; d.gap = v[15]; d.row = (long)v[19]; d.rmask = (int)v[20]; d.fn = v[27];
+}
+
+// Options opt (real[int]): [nu_s (static friction, >= 0), nu_d (dynamic,
+// 0 <= nu_d <= nu_s), gtol (length, >= 0), ftol (relative, >= 0),
+// maxFlips (>= 1), scale (force/length, > 0), crel (capture factor, >= 0)].
+struct NtsCall {
+    MeshArrays m;
+    ffc_pair pair;
+    ffc_nts_law law;
+    ffc_search_opts so;
+    std::vector<ffc_nts_node> nodes;
+};
+
+void need_nts(const char *fn, pmesh3 pTh, KN<double> *u, KN<double> *up, KN<long> *CP, KN<double> *opt,
+              NtsCall &c)
+{
+    if (!opt) fail(fn, "argument 'opt': array is not defined");
+    if (opt->N() != 7) {
+        std::ostringstream s;
+        s << "argument 'opt': size " << opt->N() << ", expected [nuS, nuD, gtol, ftol, maxFlips, scale, crel]";
+        fail(fn, s.str());
+    }
+    const KN<double> &o = *opt;
+    const char *names[7] = {"nuS", "nuD", "gtol", "ftol", "maxFlips", "scale", "crel"};
+    for (int k = 0; k < 7; k++)
+        if (!std::isfinite(o[k])) {
+            std::ostringstream s;
+            s << "argument 'opt': " << names[k] << " = opt[" << k << "] = " << num(o[k]) << " is not finite";
+            fail(fn, s.str());
+        }
+    if (o[0] < 0) fail(fn, "argument 'opt': static friction coefficient nuS = opt[0] = " + num(o[0]) + " must be >= 0");
+    if (o[1] < 0) fail(fn, "argument 'opt': dynamic friction coefficient nuD = opt[1] = " + num(o[1]) + " must be >= 0");
+    if (o[1] > o[0])
+        fail(fn, "argument 'opt': dynamic friction coefficient nuD = opt[1] = " + num(o[1]) +
+                     " exceeds the static one nuS = opt[0] = " + num(o[0]));
+    if (o[2] < 0) fail(fn, "argument 'opt': gap tolerance gtol = opt[2] = " + num(o[2]) + " must be >= 0");
+    if (o[3] < 0) fail(fn, "argument 'opt': force tolerance ftol = opt[3] = " + num(o[3]) + " must be >= 0");
+    if (o[4] < 1 || o[4] != std::floor(o[4]))
+        fail(fn, "argument 'opt': maxFlips = opt[4] = " + num(o[4]) + " must be an integer >= 1");
+    if (!(o[5] > 0)) fail(fn, "argument 'opt': row scale = opt[5] = " + num(o[5]) + " must be > 0");
+    if (o[6] < 0) fail(fn, "argument 'opt': capture factor crel = opt[6] = " + num(o[6]) + " must be >= 0");
+    c.law.nu_s = o[0]; c.law.nu_d = o[1]; c.law.gtol = o[2]; c.law.ftol = o[3];
+    c.law.max_flips = (int)o[4]; c.law.scale = o[5];
+    c.so = ffc_search_defaults();
+    c.so.capture_rel = o[6];
+    const Mesh3 &Th = need_mesh(fn, pTh);
+    mesh_arrays(Th, c.m);
+    P2Arrays p2;
+    PairView P = need_pair(fn, CP, c.m, p2);
+    if (P.ns != 3)
+        fail(fn, "argument 'CP': node-to-surface contact needs a pair of linear facets (ffcPair, [P1,P1,P1]); "
+                 "this one has 6-node facets");
+    const double *pu = need_disp(fn, u, c.m.nv);
+    check_facets(fn, "CP (slave facets)", 3, P.nfs, P.Fs, c.m.nv, c.m.X.data(), pu);
+    check_facets(fn, "CP (master facets)", 3, P.nfm, P.Fm, c.m.nv, c.m.X.data(), pu);
+    c.pair.ns = 3; c.pair.nfs = P.nfs; c.pair.Fs = P.Fs;
+    c.pair.nm = 3; c.pair.nfm = P.nfm; c.pair.Fm = P.Fm;
+    c.pair.nv = c.m.nv; c.pair.X = c.m.X.data(); c.pair.u = pu;
+    c.pair.u_prev = nullptr;
+    if (up) {
+        if (up->N() != u->N()) {
+            std::ostringstream s;
+            s << "argument 'uprev': size " << up->N() << ", expected the size of 'u' (" << u->N() << ")";
+            fail(fn, s.str());
+        }
+        for (long k = 0; k < up->N(); k++)
+            if (!std::isfinite((*up)[k])) {
+                std::ostringstream s;
+                s << "argument 'uprev': uprev[" << k << "] = " << num((*up)[k]) << " is not finite";
+                fail(fn, s.str());
+            }
+        c.pair.u_prev = &(*up)[0];
+    }
+}
+
+// the node table N of the pair (made by ffcNTSNodes), checked
+void need_nts_table(const char *fn, KNM<double> *N, NtsCall &c)
+{
+    if (!N) fail(fn, "argument 'N': array is not defined");
+    long need = 0;
+    long nn = ffc_nts_nodes(&c.pair, 0, nullptr, &need);
+    if (nn < 0 && nn != FFC_ERR_CAPACITY) fail(fn, std::string("argument 'CP': ") + ffc_strerror((int)nn));
+    if (N->M() != NTS_COLS || N->N() != need) {
+        std::ostringstream s;
+        s << "argument 'N': " << N->N() << " x " << N->M() << ", expected the node table of this pair ("
+          << need << " x " << NTS_COLS << ", made by ffcNTSNodes)";
+        fail(fn, s.str());
+    }
+    c.nodes.resize(need);
+    for (long k = 0; k < need; k++) {
+        for (long j = 0; j < NTS_COLS; j++)
+            if (!std::isfinite((*N)(k, j))) {
+                std::ostringstream s;
+                s << "argument 'N': N(" << k << ", " << j << ") = " << num((*N)(k, j)) << " is not finite";
+                fail(fn, s.str());
+            }
+        nts_from_row(*N, k, c.nodes[k]);
+        const ffc_nts_node &d = c.nodes[k];
+        if (d.node < 0 || d.node >= c.m.nv || d.state < 0 || d.state > 2 || d.mf < -1 || d.mf >= c.pair.nfm) {
+            std::ostringstream s;
+            s << "argument 'N': row " << k << " (node " << (*N)(k, 0L) << ", state " << (*N)(k, 2L)
+              << ", master facet " << (*N)(k, 8L) << ") is not a node of this pair (make N with ffcNTSNodes)";
+            fail(fn, s.str());
+        }
+    }
+}
+
+void nts_locate(const char *fn, NtsCall &c, int init)
+{
+    int st = ffc_nts_locate(&c.pair, &c.law, &c.so, init, (long)c.nodes.size(), c.nodes.data());
+    if (st) fail(fn, std::string("locating the slave nodes: ") + ffc_strerror(st));
+}
+
+void nts_table_out(const NtsCall &c, KNM<double> *N)
+{
+    N->resize(c.nodes.size(), NTS_COLS);
+    for (size_t k = 0; k < c.nodes.size(); k++) nts_to_row(c.nodes[k], *N, (long)k);
+}
+
+// ffcNTSNodes(Th, u, CP, opt, N): the node table of the slave nodes of CP,
+// each paired with the master facet under it at X + u, in contact (stick
+// when nuS > 0, else slide) when its gap is <= gtol; returns the number of
+// slave nodes.
+long ffcNTSNodes(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP, KN<double> *const &opt,
+                 KNM<double> *const &N)
+{
+    const char *fn = "ffcNTSNodes";
+    NtsCall c;
+    need_nts(fn, pTh, u, nullptr, CP, opt, c);
+    if (!N) fail(fn, "argument 'N': array is not defined");
+    long need = 0;
+    ffc_nts_nodes(&c.pair, 0, nullptr, &need);
+    c.nodes.resize(need);
+    long nn = ffc_nts_nodes(&c.pair, need, c.nodes.data(), &need);
+    if (nn < 0) fail(fn, std::string("argument 'CP': slave nodes: ") + ffc_strerror((int)nn));
+    nts_locate(fn, c, 1);
+    nts_table_out(c, N);
+    return nn;
+}
+
+// ffcNTSRows(Th, u, uprev, CP, N, fixed, opt, B, Bf, c): the constraint
+// rows of the contact nodes of N at X + u (tangential motion measured from
+// uprev, the last converged step), without the columns of the dofs with
+// fixed[i] != 0 (moved to c with the values in u): B and Bf (nrows x 3nv)
+// and c (nrows) for the system [K, Bf'; B, 0] [u; m] = [f; c]; updates N;
+// returns nrows.
+long ffcNTSRows(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
+                KNM<double> *const &N, KN<double> *const &fixed, KN<double> *const &opt,
+                Matrice_Creuse<double> *const &B, Matrice_Creuse<double> *const &Bf, KN<double> *const &cv)
+{
+    const char *fn = "ffcNTSRows";
+    NtsCall c;
+    need_nts(fn, pTh, u, up, CP, opt, c);
+    need_nts_table(fn, N, c);
+    need_size(fn, "fixed", fixed, 3 * c.m.nv);
+    if (!B) fail(fn, "argument 'B': matrix is not defined");
+    if (!Bf) fail(fn, "argument 'Bf': matrix is not defined");
+    if (!cv) fail(fn, "argument 'c': array is not defined");
+    nts_locate(fn, c, 0);
+    const long nn = (long)c.nodes.size();
+    long nt = 0, nr = 0;
+    ffc_nts_rows(&c.pair, &c.law, &(*fixed)[0], nn, c.nodes.data(), 0, nullptr, nullptr, nullptr, nullptr, 0,
+                 nullptr, &nt, &nr);
+    std::vector<long> Bi(nt + 1), Bj(nt + 1);
+    std::vector<double> Bv(nt + 1), Fv(nt + 1), rhs(nr + 1);
+    int st = ffc_nts_rows(&c.pair, &c.law, &(*fixed)[0], nn, c.nodes.data(), nt, Bi.data(), Bj.data(), Bv.data(),
+                          Fv.data(), nr, rhs.data(), &nt, &nr);
+    if (st) fail(fn, std::string("constraint rows: ") + ffc_strerror(st));
+    const int n = (int)(3 * c.m.nv);
+    HashMatrix<int, double> *hb = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
+    HashMatrix<int, double> *hf = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
+    for (long t = 0; t < nt; t++) {
+        (*hb)((int)Bi[t], (int)Bj[t]) += Bv[t];
+        (*hf)((int)Bi[t], (int)Bj[t]) += Fv[t];
+    }
+    B->A.master(hb);
+    B->typemat = 0;
+    Bf->A.master(hf);
+    Bf->typemat = 0;
+    cv->resize(nr);
+    for (long r = 0; r < nr; r++) (*cv)[r] = rhs[r];
+    nts_table_out(c, N);
+    return nr;
+}
+
+const long NTS_S_SIZE = 15;
+
+// ffcNTSUpdate(Th, u, uprev, CP, N, m, opt, S): after the solve, the
+// contact forces from the multipliers m of the rows of the last
+// ffcNTSRows, then the open / stick / slide / release transitions at X + u;
+// S = [changes, open, stick, slide, nodes the chattering guard acts on, released, max penetration,
+// min F_n, min open gap, max change of a sliding direction, Fx, Fy, Fz,
+// max |F_t| / F_n, max |gap| of the nodes that stay in contact]; returns the number
+// of state changes.
+long ffcNTSUpdate(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
+                  KNM<double> *const &N, KN<double> *const &mult, KN<double> *const &opt, KN<double> *const &S)
+{
+    const char *fn = "ffcNTSUpdate";
+    NtsCall c;
+    need_nts(fn, pTh, u, up, CP, opt, c);
+    need_nts_table(fn, N, c);
+    if (!mult) fail(fn, "argument 'm': array is not defined");
+    if (!S) fail(fn, "argument 'S': array is not defined");
+    long nr = 0;
+    for (const ffc_nts_node &d : c.nodes)
+        if (d.row >= 0) nr = std::max(nr, d.row + (long)__builtin_popcount((unsigned)d.rmask));
+    if (mult->N() != nr) {
+        std::ostringstream s;
+        s << "argument 'm': size " << mult->N() << ", expected the " << nr << " multipliers of the rows of the last ffcNTSRows";
+        fail(fn, s.str());
+    }
+    for (long k = 0; k < nr; k++)
+        if (!std::isfinite((*mult)[k])) {
+            std::ostringstream s;
+            s << "argument 'm': m[" << k << "] = " << num((*mult)[k]) << " is not finite (did the saddle-point solve fail?)";
+            fail(fn, s.str());
+        }
+    nts_locate(fn, c, 0);
+    ffc_nts_stats st;
+    int rc = ffc_nts_update(&c.law, nr, nr ? &(*mult)[0] : nullptr, (long)c.nodes.size(), c.nodes.data(), &st);
+    if (rc) fail(fn, ffc_strerror(rc));
+    nts_table_out(c, N);
+    S->resize(NTS_S_SIZE);
+    const double v[NTS_S_SIZE] = {(double)st.changes, (double)st.open, (double)st.stick, (double)st.slide,
+                                  (double)st.chatter, (double)st.released, st.max_pen, st.min_fn, st.min_gap_open,
+                                  st.max_ddir, st.force[0], st.force[1], st.force[2], st.max_ratio,
+                                  st.max_gap_err};
+    for (long k = 0; k < NTS_S_SIZE; k++) (*S)[k] = v[k];
+    return st.changes;
+}
+
+// ffcNTSPoints(Th, u, N, P): one row per slave node in the columns of
+// ffcPoints: x, y, z (current), gap, pressure F_n / area, in contact,
+// area, master facet, tangential traction on the slave (x, y, z), state
+// (0 open, 1 stick, 2 slide), dissipation density |F_t . slip| / area;
+// returns the nodes in contact.
+long ffcNTSPoints(pmesh3 const &pTh, KN<double> *const &u, KNM<double> *const &N, KNM<double> *const &P)
+{
+    const char *fn = "ffcNTSPoints";
+    const Mesh3 &Th = need_mesh(fn, pTh);
+    MeshArrays m;
+    mesh_arrays(Th, m);
+    const double *pu = need_disp(fn, u, m.nv);
+    if (!N || N->M() != NTS_COLS) fail(fn, "argument 'N': expected the node table of ffcNTSNodes");
+    if (!P) fail(fn, "argument 'P': array is not defined");
+    const long nn = N->N();
+    P->resize(nn, FFC_POINT_COLS);
+    long active = 0;
+    for (long k = 0; k < nn; k++) {
+        ffc_nts_node d;
+        nts_from_row(*N, k, d);
+        if (d.node < 0 || d.node >= m.nv || !(d.area > 0)) {
+            std::ostringstream s;
+            s << "argument 'N': row " << k << " (node " << (*N)(k, 0L) << ", area " << num((*N)(k, 1L))
+              << ") is not a slave node of this mesh";
+            fail(fn, s.str());
+        }
+        const bool on = d.state != FFC_NTS_OPEN;
+        double ft[3];
+        for (int i = 0; i < 3; i++) ft[i] = d.f[i] - d.fn * d.nr[i];
+        const double diss = std::fabs(ft[0] * d.slip[0] + ft[1] * d.slip[1] + ft[2] * d.slip[2]) / d.area;
+        const double row[FFC_POINT_COLS] = {m.X[3 * d.node] + pu[3 * d.node], m.X[3 * d.node + 1] + pu[3 * d.node + 1],
+                                            m.X[3 * d.node + 2] + pu[3 * d.node + 2], d.gap, on ? d.fn / d.area : 0.0,
+                                            on ? 1.0 : 0.0, d.area, (double)d.mf, ft[0] / d.area, ft[1] / d.area,
+                                            ft[2] / d.area, (double)d.state, diss};
+        for (long j = 0; j < FFC_POINT_COLS; j++) (*P)(k, j) = row[j];
+        active += on;
+    }
+    return active;
+}
+
 // ffcSaveVTK(file, P): the contact points of ffcPoints as a VTK point cloud
 // with gap, pressure and active fields; returns the number of points.
 long ffcSaveVTK(string *const &file, KNM<double> *const &P)
@@ -1006,6 +1304,12 @@ static void init()
                new OneOperatorN<long, pmesh3, V, V, KN<long> *, KNM<double> *, V, V, V, V>(ffcAugmentF));
     Global.Add("ffcPoints", "(",
                new OneOperatorN<long, pmesh3, V, V, KN<long> *, KNM<double> *, V, V, V, KNM<double> *>(ffcPointsF));
+    typedef KNM<double> *T;
+    typedef Matrice_Creuse<double> *M;
+    Global.Add("ffcNTSNodes", "(", new OneOperatorN<long, pmesh3, V, KN<long> *, V, T>(ffcNTSNodes));
+    Global.Add("ffcNTSRows", "(", new OneOperatorN<long, pmesh3, V, V, KN<long> *, T, V, V, M, M, V>(ffcNTSRows));
+    Global.Add("ffcNTSUpdate", "(", new OneOperatorN<long, pmesh3, V, V, KN<long> *, T, V, V, V>(ffcNTSUpdate));
+    Global.Add("ffcNTSPoints", "(", new OneOperatorN<long, pmesh3, V, T, T>(ffcNTSPoints));
     Global.Add("ffcSaveVTK", "(", new OneOperator2_<long, string *, KNM<double> *>(ffcSaveVTK));
     Global.Add("ffcWriteColumns", "(",
                new OneOperator4_<long, string *, string *, KNM<double> *, KN<double> *>(ffcWriteColumns));

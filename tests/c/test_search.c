@@ -289,6 +289,18 @@ static void test_capture_footprint(void **state)
         assert_int_equal(L[k].mf >= 0, inside && near);
         if (L[k].mf >= 0) assert_close(L[k].gap, p[2], 1e-14);
     }
+    /* at the rim: a penetrating point past the rim by less than its depth
+     * keeps its link (clamped foot), by more it has none; an open point
+     * past the rim never has one */
+    const double pts[4][3] = {{1.001, 0.5, -0.01}, {1.02, 0.5, -0.01}, {1.001, 0.5, 0.01}, {-0.005, 0.5, -0.01}};
+    const int linked[4] = {1, 0, 0, 1};
+    ffc_link Lp[4];
+    assert_int_equal(ffc_search_points(t, 4, &pts[0][0], &o, Lp), 2);
+    for (int k = 0; k < 4; k++) {
+        assert_int_equal(Lp[k].sf, k);
+        assert_int_equal(Lp[k].mf >= 0, linked[k]);
+        if (linked[k]) assert_close(Lp[k].gap, -0.01, 1e-15);
+    }
     /* bad options and sizes */
     o.capture_abs = -1;
     assert_int_equal(ffc_search(t, 3, s.nf, s.F, s.nv, s.x, 1, &o, 20, L), FFC_ERR_VALUE);

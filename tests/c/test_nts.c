@@ -1,0 +1,396 @@
+/* test_nts.c: node-to-surface Lagrange-multiplier contact: slave nodes and
+ * areas, constraint rows against their geometric definition, forces and
+ * the open / stick / slide / release transitions, bad input. */
+#include "ffc_test.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define NV 41
+
+static ffc_nts_law law_default(void)
+{
+    ffc_nts_law l = {0.3, 0.3, 1e-12, 1e-9, 8, 1.0};
+    return l;
+}
+
+/* the 41-node scene of ffc_test.h (3-node facets) */
+static void scene(double X[3 * NV], long Fm[32 * 3], long Fs[18 * 3], ffc_pair *p, double u[3 * NV])
+{
+    test_pair_scene(X, Fm, Fs);
+    memset(u, 0, 3 * NV * sizeof u[0]);
+    ffc_pair q = {3, 18, Fs, 3, 32, Fm, NV, X, u, NULL};
+    *p = q;
+}
+
+/* gap of slave node c over master facet f (flat), by projection */
+static double gap_of(const ffc_pair *p, const double *u, long c, long f)
+{
+    double Xm[3][3], x[3];
+    for (int a = 0; a < 3; a++)
+        for (int i = 0; i < 3; i++) Xm[a][i] = p->X[3 * p->Fm[3 * f + a] + i] + u[3 * p->Fm[3 * f + a] + i];
+    for (int i = 0; i < 3; i++) x[i] = p->X[3 * c + i] + u[3 * c + i];
+    ffc_proj pr;
+    ffc_project(3, Xm, x, &pr);
+    return pr.gap;
+}
+
+static void test_nodes(void **state)
+{
+    (void)state;
+    double X[3 * NV], u[3 * NV];
+    long Fm[96], Fs[54];
+    ffc_pair p;
+    scene(X, Fm, Fs, &p, u);
+    ffc_nts_node nd[16];
+    long need = 0;
+    assert_int_equal(ffc_nts_nodes(&p, 3, nd, &need), FFC_ERR_CAPACITY);
+    assert_int_equal(need, 16);
+    assert_int_equal(ffc_nts_nodes(&p, 16, nd, &need), 16);
+    double A = 0, sum = 0;
+    ffc_surface_area(3, 18, Fs, NV, X, NULL, 2, &A);
+    for (int k = 0; k < 16; k++) {
+        assert_int_equal(nd[k].node, 25 + k);
+        assert_int_equal(nd[k].state, FFC_NTS_OPEN);
+        assert_true(nd[k].area > 0);
+        sum += nd[k].area;
+    }
+    /* the tributary areas partition the slave surface */
+    assert_close(sum, A, 1e-14 * A);
+    /* a corner node has one or two facets, an interior one six: 1/6 .. 6/6 of 6 facets' thirds */
+    assert_true(nd[5].area > nd[0].area);
+}
+
+/* Puts every slave node exactly on the master (g = 0) and locates. */
+static long touching_scene(double X[3 * NV], long Fm[96], long Fs[54], ffc_pair *p, double u[3 * NV],
+                           ffc_nts_node nd[16], const ffc_nts_law *law)
+{
+    scene(X, Fm, Fs, p, u);
+    long need;
+    long nn = ffc_nts_nodes(p, 16, nd, &need);
+    assert_int_equal(ffc_nts_locate(p, law, NULL, 1, nn, nd), FFC_OK);
+    for (long k = 0; k < nn; k++) {
+        assert_true(nd[k].mf >= 0);
+        for (int i = 0; i < 3; i++) u[3 * nd[k].node + i] -= nd[k].gap * nd[k].n[i];
+    }
+    assert_int_equal(ffc_nts_locate(p, law, NULL, 1, nn, nd), FFC_OK);
+    for (long k = 0; k < nn; k++) {
+        assert_close(nd[k].gap, 0.0, 1e-15);
+        assert_int_equal(nd[k].state, FFC_NTS_STICK);
+    }
+    return nn;
+}
+
+/* rho = B v - c for the triplets */
+static void row_residual(long nt, const long Bi[], const long Bj[], const double Bv[], long nr,
+                         const double c[], const double v[], double rho[])
+{
+    for (long r = 0; r < nr; r++) rho[r] = -c[r];
+    for (long t = 0; t < nt; t++) rho[Bi[t]] += Bv[t] * v[Bj[t]];
+}
+
+static void test_rows_geometry(void **state)
+{
+    (void)state;
+    double X[3 * NV], u[3 * NV], u0[3 * NV];
+    long Fm[96], Fs[54];
+    ffc_pair p;
+    ffc_nts_node nd[16];
+    ffc_nts_law law = law_default();
+    law.scale = 7.5;
+    const long nn = touching_scene(X, Fm, Fs, &p, u, nd, &law);
+    memcpy(u0, u, sizeof u0);
+    p.u_prev = u0;
+    enum { CAP = 16 * 3 * 12 };
+    long Bi[CAP], Bj[CAP], nt, nr;
+    double Bv[CAP], Fv[CAP], c[48];
+    assert_int_equal(ffc_nts_rows(&p, &law, NULL, nn, nd, CAP, Bi, Bj, Bv, Fv, 48, c, &nt, &nr), FFC_OK);
+    assert_int_equal(nr, 3 * nn);     /* all stick: three rows each */
+    for (long t = 0; t < nt; t++) assert_true(Bv[t] == Fv[t]);   /* no sliding friction in stick */
+    double rho[48];
+    /* at the state the rows were built: satisfied */
+    row_residual(nt, Bi, Bj, Bv, nr, c, u, rho);
+    for (long r = 0; r < nr; r++) assert_close(rho[r], 0.0, 1e-14 * law.scale);
+    /* an infinitesimal rigid motion of the pair keeps every row satisfied */
+    const double tr[3] = {0.3, -0.7, 0.2}, w[3] = {0.4, 0.1, -0.9};
+    double v[3 * NV];
+    for (int a = 0; a < NV; a++) {
+        double x[3] = {X[3 * a] + u[3 * a], X[3 * a + 1] + u[3 * a + 1], X[3 * a + 2] + u[3 * a + 2]}, wx[3];
+        wx[0] = w[1] * x[2] - w[2] * x[1];
+        wx[1] = w[2] * x[0] - w[0] * x[2];
+        wx[2] = w[0] * x[1] - w[1] * x[0];
+        for (int i = 0; i < 3; i++) v[3 * a + i] = u[3 * a + i] + tr[i] + wx[i];
+    }
+    row_residual(nt, Bi, Bj, Bv, nr, c, v, rho);
+    for (long r = 0; r < nr; r++) assert_close(rho[r], 0.0, 1e-13 * law.scale);
+    /* a normal separation s of one node violates its normal row by s, only it */
+    for (long k = 0; k < nn; k++) {
+        memcpy(v, u, sizeof v);
+        const double s = 1e-3 * (k + 1);
+        for (int i = 0; i < 3; i++) v[3 * nd[k].node + i] += s * nd[k].n[i];
+        row_residual(nt, Bi, Bj, Bv, nr, c, v, rho);
+        for (long r = 0; r < nr; r++) assert_close(rho[r], r == nd[k].row ? law.scale * s : 0.0, 1e-14 * law.scale);
+    }
+    /* the normal row is dg/du: central differences of the projected gap */
+    for (long k = 0; k < nn; k++) {
+        double G[3 * NV];
+        memset(G, 0, sizeof G);
+        for (long t = 0; t < nt; t++)
+            if (Bi[t] == nd[k].row) G[Bj[t]] += Bv[t] / law.scale;
+        const long dofs[4] = {nd[k].node, Fm[3 * nd[k].mf], Fm[3 * nd[k].mf + 1], Fm[3 * nd[k].mf + 2]};
+        for (int a = 0; a < 4; a++)
+            for (int i = 0; i < 3; i++) {
+                const long j = 3 * dofs[a] + i;
+                const double h = 1e-6;
+                memcpy(v, u, sizeof v);
+                v[j] += h;
+                double gp = gap_of(&p, v, nd[k].node, nd[k].mf);
+                v[j] -= 2 * h;
+                double gm = gap_of(&p, v, nd[k].node, nd[k].mf);
+                assert_close(G[j], (gp - gm) / (2 * h), 1e-8);
+            }
+    }
+    /* Dirichlet columns go to the right-hand side: the same residual for any
+     * u that keeps the fixed values */
+    double fixed[3 * NV];
+    memset(fixed, 0, sizeof fixed);
+    for (int j = 0; j < 3 * 5; j++) fixed[j] = 1;       /* master nodes 0..4 */
+    long Bi2[CAP], Bj2[CAP], nt2, nr2;
+    double Bv2[CAP], Fv2[CAP], c2[48], rho2[48];
+    assert_int_equal(ffc_nts_rows(&p, &law, fixed, nn, nd, CAP, Bi2, Bj2, Bv2, Fv2, 48, c2, &nt2, &nr2), FFC_OK);
+    assert_int_equal(nr2, nr);
+    assert_true(nt2 < nt);
+    for (long t = 0; t < nt2; t++) assert_true(fixed[Bj2[t]] == 0);
+    memcpy(v, u, sizeof v);
+    for (int j = 15; j < 3 * NV; j++) v[j] += 1e-3 * sin(j);
+    row_residual(nt, Bi, Bj, Bv, nr, c, v, rho);
+    row_residual(nt2, Bi2, Bj2, Bv2, nr2, c2, v, rho2);
+    for (long r = 0; r < nr; r++) assert_close(rho2[r], rho[r], 1e-13 * law.scale);
+    /* capacity: sizes reported */
+    long ntc, nrc;
+    assert_int_equal(ffc_nts_rows(&p, &law, NULL, nn, nd, 5, Bi2, Bj2, Bv2, Fv2, 2, c2, &ntc, &nrc), FFC_ERR_CAPACITY);
+    assert_int_equal(ntc, nt);
+    assert_int_equal(nrc, nr);
+}
+
+/* One slave node over one big master facet, driven through open -> stick
+ * -> slide -> stick -> release by scripted displacements and multipliers. */
+static void test_transitions(void **state)
+{
+    (void)state;
+    /* master facet nodes 0, 1, 2 (z = 0, normal +z); slave facet nodes 3, 4, 5 above,
+     * normal down */
+    double X[6 * 3] = {-5, -5, 0, 5, -5, 0, 0, 5, 0, 0, 0, 0.1, 0, 1, 0.1, 1, 0, 0.1};
+    long Fm[3] = {0, 1, 2}, Fs[3] = {3, 4, 5};
+    double u[18], up[18];
+    memset(u, 0, sizeof u);
+    memset(up, 0, sizeof up);
+    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, up};
+    ffc_nts_law law = {0.5, 0.4, 1e-12, 1e-9, 20, 2.0};
+    ffc_nts_node nd[3];
+    long need;
+    assert_int_equal(ffc_nts_nodes(&p, 3, nd, &need), 3);
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, 3, nd), FFC_OK);
+    ffc_nts_node *c = &nd[0];   /* node 3 */
+    assert_int_equal(c->state, FFC_NTS_OPEN);
+    assert_close(c->gap, 0.1, 1e-15);
+    ffc_nts_stats st;
+    long Bi[64], Bj[64], nt, nr;
+    double Bv[64], Fv[64], cc[9], m[9];
+    /* open, not touching: no rows, stays open */
+    assert_int_equal(ffc_nts_rows(&p, &law, NULL, 3, nd, 64, Bi, Bj, Bv, Fv, 9, cc, &nt, &nr), FFC_OK);
+    assert_int_equal(nr, 0);
+    assert_int_equal(ffc_nts_update(&law, 0, m, 3, nd, &st), FFC_OK);
+    assert_int_equal(c->state, FFC_NTS_OPEN);
+    assert_int_equal(st.changes, 0);
+    assert_close(st.min_gap_open, 0.1, 1e-15);
+    /* penetrates: contact, sticking (nu_s > 0) */
+    for (int a = 3; a < 6; a++) u[3 * a + 2] = -0.11;
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 0, 3, nd), FFC_OK);
+    assert_int_equal(ffc_nts_update(&law, 0, m, 3, nd, &st), FFC_OK);
+    assert_int_equal(c->state, FFC_NTS_STICK);
+    assert_int_equal(st.changes, 3);
+    assert_close(st.max_pen, 0.01, 1e-15);
+    /* stick rows: three per node; the multipliers give the force
+     * F = -scale (m_n n + m_1 t1 + m_2 t2) */
+    assert_int_equal(ffc_nts_rows(&p, &law, NULL, 3, nd, 64, Bi, Bj, Bv, Fv, 9, cc, &nt, &nr), FFC_OK);
+    assert_int_equal(nr, 9);
+    assert_int_equal(c->row, 0);
+    /* normal row right-hand side closes the gap: B u_new = c with u_new on the surface */
+    assert_close(cc[0], law.scale * (-0.11 + 0.01), 1e-14);
+    /* F_n = 10, |F_t| = 4 < nu_s F_n = 5: stays stuck */
+    memset(m, 0, sizeof m);
+    for (int k = 0; k < 3; k++) m[3 * k] = -10 / law.scale;
+    /* the tangent basis of (0,0,1): t1 = e_x x n = (0,-1,0), t2 = n x t1 = (1,0,0) */
+    m[1] = 4 / law.scale;   /* F_t = -4 t1 = (0, 4, 0) */
+    for (int a = 3; a < 6; a++) u[3 * a + 2] = -0.1;
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 0, 3, nd), FFC_OK);
+    assert_int_equal(ffc_nts_update(&law, 9, m, 3, nd, &st), FFC_OK);
+    assert_int_equal(c->state, FFC_NTS_STICK);
+    assert_close(c->fn, 10, 1e-13);
+    assert_close(c->f[1], 4, 1e-13);
+    assert_close(st.force[2], 30, 1e-12);
+    assert_close(st.max_ratio, 0.4, 1e-14);
+    /* |F_t| = 6 > 5: slides, in the direction against F_t (-y) */
+    assert_int_equal(ffc_nts_rows(&p, &law, NULL, 3, nd, 64, Bi, Bj, Bv, Fv, 9, cc, &nt, &nr), FFC_OK);
+    m[1] = 6 / law.scale;
+    assert_int_equal(ffc_nts_update(&law, 9, m, 3, nd, &st), FFC_OK);
+    assert_int_equal(c->state, FFC_NTS_SLIDE);
+    assert_close(c->dir[1], -1, 1e-15);
+    assert_int_equal(st.slide, 1);
+    /* slide rows: one per node; Bf carries the friction nu_d F_n against dir */
+    assert_int_equal(ffc_nts_rows(&p, &law, NULL, 3, nd, 64, Bi, Bj, Bv, Fv, 9, cc, &nt, &nr), FFC_OK);
+    assert_int_equal(nr, 7);
+    for (long t = 0; t < nt; t++)
+        if (Bi[t] == 0 && Bj[t] == 3 * 3 + 1) assert_close(Fv[t], law.scale * law.nu_d, 1e-15);  /* -nu_d dir_y */
+    memset(m, 0, sizeof m);
+    m[0] = -10 / law.scale;
+    /* sliding on along dir: stays sliding with |F_t| = nu_d F_n exactly */
+    for (int i = 0; i < 18; i++) up[i] = u[i];
+    u[3 * 3 + 1] -= 0.02;
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 0, 3, nd), FFC_OK);
+    assert_int_equal(ffc_nts_update(&law, 7, m, 3, nd, &st), FFC_OK);
+    assert_int_equal(c->state, FFC_NTS_SLIDE);
+    assert_close(c->fn, 10, 1e-13);
+    assert_close(c->f[1], law.nu_d * 10, 1e-13);   /* friction against the slip (-y) */
+    assert_close(c->f[0], 0, 1e-15);
+    /* slip reversed: sticks again */
+    assert_int_equal(ffc_nts_rows(&p, &law, NULL, 3, nd, 64, Bi, Bj, Bv, Fv, 9, cc, &nt, &nr), FFC_OK);
+    u[3 * 3 + 1] += 0.04;
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 0, 3, nd), FFC_OK);
+    assert_int_equal(ffc_nts_update(&law, nr, m, 3, nd, &st), FFC_OK);
+    assert_int_equal(c->state, FFC_NTS_STICK);
+    /* tension: released, no force afterwards */
+    assert_int_equal(ffc_nts_rows(&p, &law, NULL, 3, nd, 64, Bi, Bj, Bv, Fv, 9, cc, &nt, &nr), FFC_OK);
+    memset(m, 0, sizeof m);
+    m[0] = 3 / law.scale;      /* F_n = -3 < 0 */
+    m[3] = -10 / law.scale;
+    m[6] = -10 / law.scale;
+    assert_int_equal(ffc_nts_update(&law, nr, m, 3, nd, &st), FFC_OK);
+    assert_int_equal(c->state, FFC_NTS_OPEN);
+    assert_int_equal(st.released, 1);
+    assert_close(st.min_fn, -3, 1e-13);
+    assert_int_equal(c->flips, 4);   /* open -> stick -> slide -> stick -> open */
+    assert_int_equal(ffc_nts_rows(&p, &law, NULL, 3, nd, 64, Bi, Bj, Bv, Fv, 9, cc, &nt, &nr), FFC_OK);
+    assert_int_equal(c->row, -1);
+    assert_int_equal(nr, 6);
+}
+
+/* frictionless: contact nodes slide, one row each, B == Bf (symmetric) */
+static void test_frictionless(void **state)
+{
+    (void)state;
+    double X[3 * NV], u[3 * NV];
+    long Fm[96], Fs[54];
+    ffc_pair p;
+    scene(X, Fm, Fs, &p, u);
+    ffc_nts_law law = {0, 0, 0, 1e-9, 8, 1};
+    ffc_nts_node nd[16];
+    long need, nt, nr;
+    const long nn = ffc_nts_nodes(&p, 16, nd, &need);
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, nn, nd), FFC_OK);
+    long ncontact = 0;
+    for (long k = 0; k < nn; k++) {
+        if (nd[k].state != FFC_NTS_OPEN) {
+            assert_int_equal(nd[k].state, FFC_NTS_SLIDE);
+            assert_true(nd[k].gap <= 0);
+            ncontact++;
+        } else {
+            assert_true(nd[k].gap > 0);
+        }
+    }
+    assert_true(ncontact > 0 && ncontact < nn);   /* the scene is partly open */
+    long Bi[200], Bj[200];
+    double Bv[200], Fv[200], c[16];
+    assert_int_equal(ffc_nts_rows(&p, &law, NULL, nn, nd, 200, Bi, Bj, Bv, Fv, 16, c, &nt, &nr), FFC_OK);
+    assert_int_equal(nr, ncontact);
+    for (long t = 0; t < nt; t++) assert_true(Bv[t] == Fv[t]);
+}
+
+/* chattering guard: once nodes have flipped max_flips times, one change
+ * per update, at the first node in order */
+static void test_chattering_guard(void **state)
+{
+    (void)state;
+    double X[6 * 3] = {-5, -5, 0, 5, -5, 0, 0, 5, 0, 0, 0, -0.01, 0, 1, -0.01, 1, 0, -0.01};
+    long Fm[3] = {0, 1, 2}, Fs[3] = {3, 4, 5};
+    double u[18];
+    memset(u, 0, sizeof u);
+    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, NULL};
+    ffc_nts_law law = {0, 0, 1e-12, 1e-9, 3, 1.0};
+    ffc_nts_node nd[3];
+    long need, nt, nr, Bi[64], Bj[64];
+    double Bv[64], Fv[64], c[9], m[3];
+    ffc_nts_stats st;
+    ffc_nts_nodes(&p, 3, nd, &need);
+    ffc_nts_locate(&p, &law, NULL, 1, 3, nd);
+    assert_int_equal(nd[0].state, FFC_NTS_SLIDE);
+    /* scripted to chatter: tension whenever in contact, penetration when open */
+    const long expect[7] = {3, 3, 3, 1, 1, 1, 1};
+    for (int it = 0; it < 7; it++) {
+        int before[3] = {nd[0].state, nd[1].state, nd[2].state};
+        ffc_nts_rows(&p, &law, NULL, 3, nd, 64, Bi, Bj, Bv, Fv, 9, c, &nt, &nr);
+        for (long r = 0; r < nr; r++) m[r] = 1.0;
+        assert_int_equal(ffc_nts_update(&law, nr, m, 3, nd, &st), FFC_OK);
+        assert_int_equal(st.changes, expect[it]);
+        if (it >= 3) {
+            /* the guard acts: only the first node that asks changes */
+            assert_int_equal(st.chatter, 3);
+            assert_true(nd[0].state != before[0]);
+            assert_int_equal(nd[1].state, before[1]);
+            assert_int_equal(nd[2].state, before[2]);
+        }
+    }
+}
+
+static void test_bad_input(void **state)
+{
+    (void)state;
+    double X[3 * NV], u[3 * NV];
+    long Fm[96], Fs[54];
+    ffc_pair p;
+    scene(X, Fm, Fs, &p, u);
+    ffc_nts_node nd[16];
+    long need;
+    const long nn = ffc_nts_nodes(&p, 16, nd, &need);
+    ffc_nts_law law = law_default();
+    law.nu_d = 0.5;   /* above nu_s */
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, nn, nd), FFC_ERR_VALUE);
+    law = law_default();
+    law.nu_s = -0.1;
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, nn, nd), FFC_ERR_VALUE);
+    law = law_default();
+    law.scale = 0;
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, nn, nd), FFC_ERR_VALUE);
+    law = law_default();
+    law.max_flips = 0;
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, nn, nd), FFC_ERR_VALUE);
+    law = law_default();
+    ffc_pair q = p;
+    q.ns = q.nm = 6;
+    assert_int_equal(ffc_nts_nodes(&q, 16, nd, &need), FFC_ERR_NODES);
+    q = p;
+    q.nfs = 0;
+    assert_int_equal(ffc_nts_nodes(&q, 16, nd, &need), FFC_ERR_EMPTY);
+    u[3 * 30] = NAN;
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, nn, nd), FFC_ERR_NONFINITE);
+    u[3 * 30] = 0;
+    double m[2] = {1, INFINITY};
+    ffc_nts_stats st;
+    assert_int_equal(ffc_nts_update(&law, 2, m, nn, nd, &st), FFC_ERR_NONFINITE);
+    nd[0].node = NV;
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, nn, nd), FFC_ERR_INDEX);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_nodes),
+        cmocka_unit_test(test_rows_geometry),
+        cmocka_unit_test(test_transitions),
+        cmocka_unit_test(test_frictionless),
+        cmocka_unit_test(test_chattering_guard),
+        cmocka_unit_test(test_bad_input),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
