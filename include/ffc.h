@@ -452,6 +452,7 @@ int ffc_write_columns(const char *path, const char *header, long n, int ncol,
  *   stick:  the slide row and t_i^T D u = t_i^T D u^n, i = 1, 2  (no
  *           tangential motion over the master since the last converged
  *           step u^n; t_1, t_2 an orthonormal tangent basis of n)
+ *   slide with friction: the slide row and e^T D u = e^T D u^n, e = n x d
  *   open:   none.
  * The saddle-point system  [K  Bf^T; B  0] [u; m] = [f; c]  gives the
  * multipliers m; the contact force on the slave node is -(Bf^T m) at its
@@ -461,10 +462,15 @@ int ffc_write_columns(const char *path, const char *header, long n, int ncol,
  * with F_n = -m_n); all scaled by law->scale.  B = Bf without friction
  * (symmetric system).
  * Transitions (ffc_nts_update): open -> contact when g < -gtol (stick if
- * nu_s > 0, else slide); contact -> open when F_n < -ftol max F_n
+ * nu_s > 0 and the node has not moved tangentially since u^n, else slide
+ * along that motion); contact -> open when F_n < -ftol max F_n
  * (tension release); stick -> slide when |F_t| > nu_s F_n (d = -F_t/|F_t|);
- * slide -> stick when the tangential slip since the last converged step
- * points against d.  Chattering guard: once a node has changed state
+ * slide -> stick when |q| <= nu_d F_n or q . d <= 0, with q = -F_t + c s,
+ * s the tangential slip since the last converged step, c = law->scale;
+ * else d = q / |q| (a primal-dual active-set rule: noise in s does not
+ * flip the state).  A sliding node with friction has a second row, no
+ * motion across d (e = n x d); its multiplier, the lateral friction, is
+ * part of F_t and turns d from one update to the next.  Chattering guard: once a node has changed state
  * max_flips times in one load step, each update makes one change only,
  * at the first node in order that asks for one (the least-index rule,
  * which terminates for frictionless contact, a P-matrix complementarity

@@ -186,18 +186,36 @@ static void tangent_basis(const double n[3], double t1[3], double t2[3])
 }
 
 /* Directions of a node's rows: v[r] the constraint direction, w[r] the
- * force direction (v with the sliding friction of slide nodes); returns
- * the number of rows (3 stick, 1 slide). */
+ * force direction; returns the number of rows: 3 stick (n, t1, t2);
+ * slide with friction 2: n with the force direction n - nu_d d (the
+ * friction nu_d F_n against the sliding direction d), and the lateral
+ * direction e = n x d (no motion across d: its multiplier is the lateral
+ * friction the update turns d with); frictionless slide 1 (n). */
 static int row_dirs(const ffc_nts_law *law, const ffc_nts_node *d, const double n[3],
                     double v[3][3], double w[3][3])
 {
-    const int nr = d->state == FFC_NTS_STICK ? 3 : 1;
     memcpy(v[0], n, sizeof v[0]);
-    if (nr == 3) tangent_basis(n, v[1], v[2]);
-    for (int r = 0; r < nr; r++) memcpy(w[r], v[r], sizeof w[r]);
-    if (d->state == FFC_NTS_SLIDE && law->nu_d > 0)
-        for (int i = 0; i < 3; i++) w[0][i] -= law->nu_d * d->dir[i];
-    return nr;
+    memcpy(w[0], n, sizeof w[0]);
+    if (d->state == FFC_NTS_STICK) {
+        tangent_basis(n, v[1], v[2]);
+        memcpy(w[1], v[1], sizeof w[1]);
+        memcpy(w[2], v[2], sizeof w[2]);
+        return 3;
+    }
+    if (d->state != FFC_NTS_SLIDE || !(law->nu_d > 0)) return 1;
+    /* the sliding direction in the tangent plane of n */
+    double t[3];
+    const double dn = ffc__dot(d->dir, n);
+    for (int i = 0; i < 3; i++) t[i] = d->dir[i] - dn * n[i];
+    const double l = sqrt(ffc__dot(t, t));
+    if (!(l > 1e-8)) return 1;
+    for (int i = 0; i < 3; i++) {
+        t[i] /= l;
+        w[0][i] -= law->nu_d * t[i];
+    }
+    ffc__cross(n, t, v[1]);
+    memcpy(w[1], v[1], sizeof w[1]);
+    return 2;
 }
 
 int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixed[],
@@ -316,7 +334,14 @@ int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn
         double newdir[3];
         memcpy(newdir, d->dir, sizeof newdir);
         if (old == FFC_NTS_OPEN) {
-            if (d->mf >= 0 && d->gap < -law->gtol) next = law->nu_s > 0 ? FFC_NTS_STICK : FFC_NTS_SLIDE;
+            if (d->mf >= 0 && d->gap < -law->gtol) {
+                /* a node arriving with tangential motion since u^n slides on
+                 * along it: sticking would pull it back to where it was at u^n */
+                const double sn = sqrt(ffc__dot(d->slip, d->slip));
+                next = law->nu_s > 0 && !(sn > 1e-9 * sqrt(d->area)) ? FFC_NTS_STICK : FFC_NTS_SLIDE;
+                if (next == FFC_NTS_SLIDE && sn > 0)
+                    for (int i = 0; i < 3; i++) newdir[i] = d->slip[i] / sn;
+            }
         } else if (d->mf < 0) {
             next = FFC_NTS_OPEN;       /* slid off the master surface */
         } else if (d->row >= 0 && d->fn < -law->ftol * fmax_n) {
@@ -326,13 +351,18 @@ int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn
                 next = FFC_NTS_SLIDE;
                 for (int i = 0; i < 3; i++) newdir[i] = -ft[i] / ftn;
             }
-        } else if (old == FFC_NTS_SLIDE && law->nu_s > 0) {
-            const double sn = sqrt(ffc__dot(d->slip, d->slip));
-            if (sn > 1e-12 * sqrt(d->area)) {
-                if (ffc__dot(d->slip, d->dir) < 0) next = FFC_NTS_STICK;   /* slip reversed */
-                else
-                    for (int i = 0; i < 3; i++) newdir[i] = d->slip[i] / sn;
-            }
+        } else if (old == FFC_NTS_SLIDE && law->nu_s > 0 && d->row >= 0) {
+            /* q = nu_d F_n d - f_lat e + c s: the sliding traction pushed on
+             * by the slip s along d and turned by the lateral reaction; the
+             * node sticks when |q| falls to the bound (a slip reversed by up
+             * to 2 nu_d F_n / c) or q turns against d (the stick force then
+             * gives the new direction), else slides along q */
+            double q[3];
+            for (int i = 0; i < 3; i++) q[i] = -ft[i] + law->scale * d->slip[i];
+            const double qn = sqrt(ffc__dot(q, q));
+            if (!(qn > law->nu_d * d->fn) || qn == 0 || ffc__dot(q, d->dir) <= 0) next = FFC_NTS_STICK;
+            else
+                for (int i = 0; i < 3; i++) newdir[i] = q[i] / qn;
         }
         if (next != old && one_at_a_time && st->changes > 0) {
             next = old;

@@ -7,7 +7,8 @@
 #   results/study-pareto.png       error against wall time, Pareto front
 #   results/study-eps.png          iterations against the penalty factor
 #   results/study-time.png         where the time goes at each mesh level
-# Runs longer than 30 s are timed once (column reps).
+# Runs longer than 30 s are timed once (column reps).  Knob "method": the
+# node-to-surface Lagrange-multiplier method (-method nts) at each mesh level.
 # Usage: sh scripts/study.sh [quick | plots]   (plots: redraw from results/study.csv)
 cd "$(dirname "$0")/.." || exit 2
 mode=${1:-full}
@@ -27,7 +28,7 @@ val() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" | head -1; }
 tval() { grep '"time"' "$1" | sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" | head -1; }   # time split
 F_ref=$(val "$refjson" F); p0_ref=$(val "$refjson" p0_fit); a_ref=$(val "$refjson" a_fit)
 
-echo "knob,label,order,h_c,eps_factor,pentol,qdeg,converged,dofs,F,a,a_fit,p_max,p0_fit,a_hertz,p0_hertz,err_a,err_a_fit,err_p,err_p0_fit,err_F_ref,err_p0_ref,err_a_ref,max_penetration,newton,uzawa,factorizations,t_total,t_search,t_contact,t_bulk,t_solve,peak_mb,reps" > "$csv"
+echo "knob,label,order,h_c,eps_factor,pentol,qdeg,converged,dofs,F,a,a_fit,p_max,p0_fit,a_hertz,p0_hertz,err_a,err_a_fit,err_p,err_p0_fit,err_F_ref,err_p0_ref,err_a_ref,max_penetration,newton,uzawa,factorizations,t_total,t_search,t_contact,t_bulk,t_solve,peak_mb,reps,method" > "$csv"
 
 run() {   # run <knob> <label> <args...>
     knob=$1; label=$2; shift 2
@@ -51,14 +52,15 @@ run() {   # run <knob> <label> <args...>
     pt=$(echo "$@" | sed -n 's/.*-pentol \([^ ]*\).*/\1/p'); pt=${pt:-1e-4}
     q=$(echo "$@" | sed -n 's/.*-q \([^ ]*\).*/\1/p'); q=${q:-4}
     mem=$(tail -1 "$out.mem" 2>/dev/null | awk '{printf "%.1f", $1 / 1024}')
+    method=al; case "$*" in *"-method nts"*) method=nts ;; esac
     if [ "$conv" = 1 ]; then
         F=$(val $j F); p0f=$(val $j p0_fit); af=$(val $j a_fit)
         eref=$(awk -v a="$F" -v b="$F_ref" 'BEGIN {printf "%.6g", (a - b) / b < 0 ? (b - a) / b : (a - b) / b}')
         epref=$(awk -v a="$p0f" -v b="$p0_ref" 'BEGIN {d = (a - b) / b; printf "%.6g", d < 0 ? -d : d}')
         earef=$(awk -v a="$af" -v b="$a_ref" 'BEGIN {d = (a - b) / b; printf "%.6g", d < 0 ? -d : d}')
-        echo "$knob,$label,$order,$hc,$ef,$pt,$q,1,$(val $j dofs),$F,$(val $j a),$af,$(val $j p_max),$p0f,$(val $j a_hertz),$(val $j p0_hertz),$(val $j err_a),$(val $j err_a_fit),$(val $j err_p),$(val $j err_p0_fit),$eref,$epref,$earef,$(val $j max_penetration),$(val $j newton_iterations),$(val $j uzawa_iterations),$(val $j factorizations),$tmed,$(tval $j search),$(tval $j contact_assembly),$(tval $j bulk_assembly),$(tval $j linear_solves),$mem,$n" >> "$csv"
+        echo "$knob,$label,$order,$hc,$ef,$pt,$q,1,$(val $j dofs),$F,$(val $j a),$af,$(val $j p_max),$p0f,$(val $j a_hertz),$(val $j p0_hertz),$(val $j err_a),$(val $j err_a_fit),$(val $j err_p),$(val $j err_p0_fit),$eref,$epref,$earef,$(val $j max_penetration),$(val $j newton_iterations),$(val $j uzawa_iterations),$(val $j factorizations),$tmed,$(tval $j search),$(tval $j contact_assembly),$(tval $j bulk_assembly),$(tval $j linear_solves),$mem,$n,$method" >> "$csv"
     else
-        echo "$knob,$label,$order,$hc,$ef,$pt,$q,0,,,,,,,,,,,,,,,,,$(val $j newton_iterations),$(val $j uzawa_iterations),,$tmed,,,,,$mem,$n" >> "$csv"
+        echo "$knob,$label,$order,$hc,$ef,$pt,$q,0,,,,,,,,,,,,,,,,,$(val $j newton_iterations),$(val $j uzawa_iterations),,$tmed,,,,,$mem,$n,$method" >> "$csv"
     fi
     echo "  $label: converged=$conv wall=$tmed s"
 }
@@ -70,6 +72,7 @@ if [ "$mode" = quick ]; then
     run uzawa penalty-only -hc 0.05 -pentol 1e30 -ltol 1e30
     for t in 1e-2 1e-6; do run uzawa "pentol$t" -hc 0.05 -pentol $t -ltol $t; done
     for q in 1 6; do run quad "q$q" -hc 0.05 -q $q; done
+    for h in 0.1 0.05; do run method "nts-hc$h" -hc $h -method nts; done
 else
     for h in 0.1 0.05 0.025 0.0125; do run mesh "p1-hc$h" -hc $h; done
     for h in 0.1 0.05; do run mesh "p2-hc$h" -hc $h -DQUADRATIC=1; done
@@ -79,6 +82,7 @@ else
     for q in 1 2 4 5 6; do run quad "q$q" -hc 0.05 -q $q; done
     run combined p1-hc0.025-q2 -hc 0.025 -q 2
     run combined p2-hc0.05-q2 -hc 0.05 -q 2 -DQUADRATIC=1
+    for h in 0.1 0.05 0.025 0.0125; do run method "nts-hc$h" -hc $h -method nts; done
 fi
 
 fi

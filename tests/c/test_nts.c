@@ -238,18 +238,31 @@ static void test_transitions(void **state)
     assert_int_equal(c->state, FFC_NTS_SLIDE);
     assert_close(c->dir[1], -1, 1e-15);
     assert_int_equal(st.slide, 1);
-    /* slide rows: one per node; Bf carries the friction nu_d F_n against dir */
+    /* slide rows: the normal row, whose Bf carries the friction nu_d F_n
+     * against dir, and the lateral row e = n x dir = (1, 0, 0) */
     assert_int_equal(ffc_nts_rows(&p, &law, NULL, 3, nd, 64, Bi, Bj, Bv, Fv, 9, cc, &nt, &nr), FFC_OK);
-    assert_int_equal(nr, 7);
-    for (long t = 0; t < nt; t++)
-        if (Bi[t] == 0 && Bj[t] == 3 * 3 + 1) assert_close(Fv[t], law.scale * law.nu_d, 1e-15);  /* -nu_d dir_y */
+    assert_int_equal(nr, 8);
+    int seen = 0;
+    for (long t = 0; t < nt; t++) {
+        if (Bi[t] == 0 && Bj[t] == 3 * 3 + 1) {
+            assert_close(Bv[t], 0, 0);
+            assert_close(Fv[t], law.scale * law.nu_d, 1e-15);  /* -nu_d dir_y */
+            seen++;
+        }
+        if (Bi[t] == 1 && Bj[t] == 3 * 3) {
+            assert_close(Bv[t], law.scale, 1e-15);
+            assert_close(Fv[t], law.scale, 1e-15);
+            seen++;
+        }
+    }
+    assert_int_equal(seen, 2);
     memset(m, 0, sizeof m);
     m[0] = -10 / law.scale;
     /* sliding on along dir: stays sliding with |F_t| = nu_d F_n exactly */
     for (int i = 0; i < 18; i++) up[i] = u[i];
     u[3 * 3 + 1] -= 0.02;
     assert_int_equal(ffc_nts_locate(&p, &law, NULL, 0, 3, nd), FFC_OK);
-    assert_int_equal(ffc_nts_update(&law, 7, m, 3, nd, &st), FFC_OK);
+    assert_int_equal(ffc_nts_update(&law, 8, m, 3, nd, &st), FFC_OK);
     assert_int_equal(c->state, FFC_NTS_SLIDE);
     assert_close(c->fn, 10, 1e-13);
     assert_close(c->f[1], law.nu_d * 10, 1e-13);   /* friction against the slip (-y) */
