@@ -557,6 +557,19 @@ int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixe
 int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn,
                    ffc_nts_node nodes[], ffc_nts_stats *st);
 
+/* Number of rows the nodes' row and rmask fields describe (the size of the
+ * multiplier vector of the last ffc_nts_rows). */
+long ffc_nts_nrows(long nn, const ffc_nts_node nodes[]);
+
+/* One row per node in the columns of ffc_points, P[nn*FFC_POINT_COLS]:
+ * x, y, z at X + u (nv nodes), gap, pressure F_n / area (0 when open),
+ * in contact, area, master facet, tangential traction on the slave
+ * F_t / area (x, y, z), state FFC_NTS_*, dissipation density
+ * |F_t . slip| / area.  Returns the nodes in contact; FFC_ERR_INDEX or
+ * FFC_ERR_VALUE (area <= 0) with *bad = the node row at fault. */
+int ffc_nts_points(long nv, const double X[], const double u[], long nn, const ffc_nts_node nodes[],
+                   double P[], long *bad);
+
 /* ------------------------------------------------- quadratic tetrahedra */
 /* Numbers the nodes of P2 tetrahedra T[nt*4] (nv vertices) as FreeFEM
  * numbers scalar P2 degrees of freedom: element by element, the 4 vertices

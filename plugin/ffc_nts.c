@@ -286,6 +286,26 @@ int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixe
     return (nt > cap || nr > ccap) ? FFC_ERR_CAPACITY : FFC_OK;
 }
 
+/* tangential part ft = f - fn nr of a node's contact force; returns |ft| */
+static double tangential_force(const ffc_nts_node *d, double ft[3])
+{
+    for (int i = 0; i < 3; i++) ft[i] = d->f[i] - d->fn * d->nr[i];
+    return sqrt(ffc__dot(ft, ft));
+}
+
+long ffc_nts_nrows(long nn, const ffc_nts_node nodes[])
+{
+    if (!nodes && nn > 0) return FFC_ERR_NULL;
+    long nr = 0;
+    for (long k = 0; k < nn; k++) {
+        if (nodes[k].row < 0) continue;
+        long end = nodes[k].row;
+        for (int b = 0; b < 3; b++) end += (nodes[k].rmask >> b) & 1;
+        if (end > nr) nr = end;
+    }
+    return nr;
+}
+
 int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn,
                    ffc_nts_node nodes[], ffc_nts_stats *st)
 {
@@ -328,8 +348,7 @@ int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn
         ffc_nts_node *d = &nodes[k];
         const int old = d->state;
         double ft[3];
-        for (int i = 0; i < 3; i++) ft[i] = d->f[i] - d->fn * d->nr[i];
-        const double ftn = sqrt(ffc__dot(ft, ft));
+        const double ftn = tangential_force(d, ft);
         int next = old;
         double newdir[3];
         memcpy(newdir, d->dir, sizeof newdir);
@@ -399,4 +418,40 @@ int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn
         for (int i = 0; i < 3; i++) st->force[i] += d->f[i];
     }
     return FFC_OK;
+}
+
+int ffc_nts_points(long nv, const double X[], const double u[], long nn, const ffc_nts_node nodes[],
+                   double P[], long *bad)
+{
+    if (!X || !u || !P || !bad || (nn > 0 && !nodes)) return FFC_ERR_NULL;
+    *bad = -1;
+    long active = 0;
+    for (long k = 0; k < nn; k++) {
+        const ffc_nts_node *d = &nodes[k];
+        if (d->node < 0 || d->node >= nv) {
+            *bad = k;
+            return FFC_ERR_INDEX;
+        }
+        if (!(d->area > 0)) {
+            *bad = k;
+            return FFC_ERR_VALUE;
+        }
+        const int on = d->state != FFC_NTS_OPEN;
+        double ft[3];
+        tangential_force(d, ft);
+        double *row = P + k * FFC_POINT_COLS;
+        for (int i = 0; i < 3; i++) {
+            row[i] = X[3 * d->node + i] + u[3 * d->node + i];
+            row[8 + i] = ft[i] / d->area;
+        }
+        row[3] = d->gap;
+        row[4] = on ? d->fn / d->area : 0.0;
+        row[5] = on;
+        row[6] = d->area;
+        row[7] = (double)d->mf;
+        row[11] = d->state;
+        row[12] = fabs(ffc__dot(ft, d->slip)) / d->area;
+        active += on;
+    }
+    return active <= 2147483647L ? (int)active : FFC_ERR_SIZE;
 }

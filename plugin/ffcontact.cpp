@@ -595,6 +595,31 @@ Options need_options(const char *fn, KN<double> *opt)
     return o;
 }
 
+// Every entry of the array x (argument `name`) finite.
+void need_finite(const char *fn, const char *name, KN<double> *x)
+{
+    for (long k = 0; k < x->N(); k++)
+        if (!std::isfinite((*x)[k])) {
+            std::ostringstream s;
+            s << "argument '" << name << "': " << name << "[" << k << "] = " << num((*x)[k]) << " is not finite";
+            fail(fn, s.str());
+        }
+}
+
+// The displacement of the last converged step (argument 'uprev'): the
+// size of u, finite.
+const double *need_uprev(const char *fn, KN<double> *up, KN<double> *u)
+{
+    if (!up) fail(fn, "argument 'uprev': array is not defined");
+    if (up->N() != u->N()) {
+        std::ostringstream s;
+        s << "argument 'uprev': size " << up->N() << ", expected the size of 'u' (" << u->N() << ")";
+        fail(fn, s.str());
+    }
+    need_finite(fn, "uprev", up);
+    return &(*up)[0];
+}
+
 // up, lamT: nullptr in the frictionless forms of the calls
 void need_links(const char *fn, pmesh3 pTh, KN<double> *u, KN<long> *CP,
                 KNM<double> *L, KN<double> *lam, const Options &o, LinkCall &c,
@@ -631,12 +656,7 @@ void need_links(const char *fn, pmesh3 pTh, KN<double> *u, KN<long> *CP,
                           : "one multiplier per link: ") << nlam;
         fail(fn, s.str());
     }
-    for (long k = 0; k < nlam; k++)
-        if (!std::isfinite((*lam)[k])) {
-            std::ostringstream s;
-            s << "argument 'lambda': lambda[" << k << "] = " << num((*lam)[k]) << " is not finite";
-            fail(fn, s.str());
-        }
+    need_finite(fn, "lambda", lam);
     const KNM<double> &A = *L;
     c.links.resize(c.nl);
     const long nq = c.nl / c.nfs;
@@ -681,18 +701,7 @@ void need_links(const char *fn, pmesh3 pTh, KN<double> *u, KN<long> *CP,
         fail(fn, s.str());
     }
     if (!history_form) return;
-    if (!up) fail(fn, "argument 'uprev': array is not defined");
-    if (up->N() != u->N()) {
-        std::ostringstream s;
-        s << "argument 'uprev': size " << up->N() << ", expected the size of 'u' (" << u->N() << ")";
-        fail(fn, s.str());
-    }
-    for (long k = 0; k < up->N(); k++)
-        if (!std::isfinite((*up)[k])) {
-            std::ostringstream s;
-            s << "argument 'uprev': uprev[" << k << "] = " << num((*up)[k]) << " is not finite";
-            fail(fn, s.str());
-        }
+    const double *uprev = need_uprev(fn, up, u);
     if (!lamT) fail(fn, "argument 'lambdaT': array is not defined");
     const long nlt = 3 * (o.law.nodal ? c.nn : c.nl);
     if (lamT->N() != nlt) {
@@ -701,13 +710,8 @@ void need_links(const char *fn, pmesh3 pTh, KN<double> *u, KN<long> *CP,
           << (o.law.nodal ? (c.quad ? "P2 node" : "mesh vertex") : "link") << ": " << nlt;
         fail(fn, s.str());
     }
-    for (long k = 0; k < lamT->N(); k++)
-        if (!std::isfinite((*lamT)[k])) {
-            std::ostringstream s;
-            s << "argument 'lambdaT': lambdaT[" << k << "] = " << num((*lamT)[k]) << " is not finite";
-            fail(fn, s.str());
-        }
-    c.pair.u_prev = &(*up)[0];
+    need_finite(fn, "lambdaT", lamT);
+    c.pair.u_prev = uprev;
     c.lam_t = &(*lamT)[0];
 }
 
@@ -980,20 +984,7 @@ void need_nts(const char *fn, pmesh3 pTh, KN<double> *u, KN<double> *up, KN<long
     c.pair.nm = 3; c.pair.nfm = P.nfm; c.pair.Fm = P.Fm;
     c.pair.nv = c.m.nv; c.pair.X = c.m.X.data(); c.pair.u = pu;
     c.pair.u_prev = nullptr;
-    if (up) {
-        if (up->N() != u->N()) {
-            std::ostringstream s;
-            s << "argument 'uprev': size " << up->N() << ", expected the size of 'u' (" << u->N() << ")";
-            fail(fn, s.str());
-        }
-        for (long k = 0; k < up->N(); k++)
-            if (!std::isfinite((*up)[k])) {
-                std::ostringstream s;
-                s << "argument 'uprev': uprev[" << k << "] = " << num((*up)[k]) << " is not finite";
-                fail(fn, s.str());
-            }
-        c.pair.u_prev = &(*up)[0];
-    }
+    if (up) c.pair.u_prev = need_uprev(fn, up, u);
 }
 
 // the node table N of the pair (made by ffcNTSNodes), checked
@@ -1124,9 +1115,7 @@ long ffcNTSUpdate(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up
     need_nts_table(fn, N, c);
     if (!mult) fail(fn, "argument 'm': array is not defined");
     if (!S) fail(fn, "argument 'S': array is not defined");
-    long nr = 0;
-    for (const ffc_nts_node &d : c.nodes)
-        if (d.row >= 0) nr = std::max(nr, d.row + (long)__builtin_popcount((unsigned)d.rmask));
+    const long nr = ffc_nts_nrows((long)c.nodes.size(), c.nodes.data());
     if (mult->N() != nr) {
         std::ostringstream s;
         s << "argument 'm': size " << mult->N() << ", expected the " << nr << " multipliers of the rows of the last ffcNTSRows";
@@ -1167,28 +1156,20 @@ long ffcNTSPoints(pmesh3 const &pTh, KN<double> *const &u, KNM<double> *const &N
     if (!N || N->M() != NTS_COLS) fail(fn, "argument 'N': expected the node table of ffcNTSNodes");
     if (!P) fail(fn, "argument 'P': array is not defined");
     const long nn = N->N();
-    P->resize(nn, FFC_POINT_COLS);
-    long active = 0;
-    for (long k = 0; k < nn; k++) {
-        ffc_nts_node d;
-        nts_from_row(*N, k, d);
-        if (d.node < 0 || d.node >= m.nv || !(d.area > 0)) {
-            std::ostringstream s;
-            s << "argument 'N': row " << k << " (node " << (*N)(k, 0L) << ", area " << num((*N)(k, 1L))
-              << ") is not a slave node of this mesh";
-            fail(fn, s.str());
-        }
-        const bool on = d.state != FFC_NTS_OPEN;
-        double ft[3];
-        for (int i = 0; i < 3; i++) ft[i] = d.f[i] - d.fn * d.nr[i];
-        const double diss = std::fabs(ft[0] * d.slip[0] + ft[1] * d.slip[1] + ft[2] * d.slip[2]) / d.area;
-        const double row[FFC_POINT_COLS] = {m.X[3 * d.node] + pu[3 * d.node], m.X[3 * d.node + 1] + pu[3 * d.node + 1],
-                                            m.X[3 * d.node + 2] + pu[3 * d.node + 2], d.gap, on ? d.fn / d.area : 0.0,
-                                            on ? 1.0 : 0.0, d.area, (double)d.mf, ft[0] / d.area, ft[1] / d.area,
-                                            ft[2] / d.area, (double)d.state, diss};
-        for (long j = 0; j < FFC_POINT_COLS; j++) (*P)(k, j) = row[j];
-        active += on;
+    std::vector<ffc_nts_node> nodes(nn);
+    for (long k = 0; k < nn; k++) nts_from_row(*N, k, nodes[k]);
+    std::vector<double> out(nn * FFC_POINT_COLS);
+    long bad = -1;
+    int active = ffc_nts_points(m.nv, m.X.data(), pu, nn, nodes.data(), out.data(), &bad);
+    if (active < 0) {
+        std::ostringstream s;
+        s << "argument 'N': row " << bad << " (node " << (*N)(bad, 0L) << ", area " << num((*N)(bad, 1L))
+          << ") is not a slave node of this mesh";
+        fail(fn, s.str());
     }
+    P->resize(nn, FFC_POINT_COLS);
+    for (long k = 0; k < nn; k++)
+        for (long j = 0; j < FFC_POINT_COLS; j++) (*P)(k, j) = out[k * FFC_POINT_COLS + j];
     return active;
 }
 

@@ -267,6 +267,22 @@ static void test_transitions(void **state)
     assert_close(c->fn, 10, 1e-13);
     assert_close(c->f[1], law.nu_d * 10, 1e-13);   /* friction against the slip (-y) */
     assert_close(c->f[0], 0, 1e-15);
+    assert_int_equal(ffc_nts_nrows(3, nd), 8);
+    /* per-node output: pressure and traction per tributary area, state,
+     * dissipation |F_t . slip| / area */
+    double P[3 * FFC_POINT_COLS];
+    long bad;
+    assert_int_equal(ffc_nts_points(6, X, u, 3, nd, P, &bad), 3);
+    assert_close(P[2], 0.1 - 0.1, 1e-15);                    /* z at X + u */
+    assert_close(P[4], 10 / c->area, 1e-12);
+    assert_close(P[9], law.nu_d * 10 / c->area, 1e-12);
+    assert_close(P[11], FFC_NTS_SLIDE, 0);
+    assert_close(P[12], law.nu_d * 10 * 0.02 / c->area, 1e-12);
+    const double area1 = nd[1].area;
+    nd[1].area = 0;
+    assert_int_equal(ffc_nts_points(6, X, u, 3, nd, P, &bad), FFC_ERR_VALUE);
+    assert_int_equal(bad, 1);
+    nd[1].area = area1;
     /* slip reversed: sticks again */
     assert_int_equal(ffc_nts_rows(&p, &law, NULL, 3, nd, 64, Bi, Bj, Bv, Fv, 9, cc, &nt, &nr), FFC_OK);
     u[3 * 3 + 1] += 0.04;
