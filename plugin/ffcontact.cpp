@@ -545,6 +545,7 @@ struct LinkCall {
 struct Options {
     ffc_effects fx;
     ffc_law law;
+    bool lower;   // K stored as its lower triangle (symmetric storage, for CHOLMOD)
 };
 
 Options need_options(const char *fn, KN<double> *opt)
@@ -575,6 +576,16 @@ Options need_options(const char *fn, KN<double> *opt)
         if (m != 0 && m != 1)
             fail(fn, "argument 'opt': tangent = opt[3] = " + num(m) + " must be 0 (consistent) or 1 (material part only)");
         o.law.material_only = (int)m;
+    }
+    o.lower = false;
+    if (opt->N() >= 7) {
+        double m = (*opt)[6];
+        if (m != 0 && m != 1)
+            fail(fn, "argument 'opt': storage = opt[6] = " + num(m) + " must be 0 (full) or 1 (lower triangle)");
+        if (m == 1 && (o.fx.friction || o.fx.finite_def))
+            fail(fn, "argument 'opt': storage = opt[6] = 1 (lower triangle) needs a symmetric tangent: "
+                     "frictionless and small strain (effects = opt[1] = " + num(b) + ")");
+        o.lower = m == 1;
     }
     o.law.mu = 0.0;
     o.law.eps_t = 0.0;
@@ -768,8 +779,10 @@ long assemble(const char *fn, pmesh3 pTh, KN<double> *u, KN<double> *up, KN<long
     }
     if (rc) link_error(fn, rc, bad);
     for (long i = 0; i < n; i++) (*R)[i] += Rc[i];
-    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, (int)std::min(nt, 1L << 30), 0);
-    for (long t = 0; t < nt; t++) (*h)((int)Ti[t], (int)Tj[t]) += Tv[t];
+    // symmetric storage keeps the lower triangle, as FreeFEM's half matrices do
+    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, (int)std::min(nt, 1L << 30), o.lower ? 1 : 0);
+    for (long t = 0; t < nt; t++)
+        if (!o.lower || Ti[t] >= Tj[t]) (*h)((int)Ti[t], (int)Tj[t]) += Tv[t];
     K->A.master(h);
     K->typemat = 0;
     return st.active;
