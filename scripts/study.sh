@@ -1,7 +1,7 @@
 #!/bin/sh
 # study.sh: what accuracy costs in time, on the Hertz case. Sweeps one knob
 # at a time from the default (P1, h_c = 0.05, automatic penalty, Uzawa
-# tolerance 1e-4 h_c, quadrature degree 4, UMFPACK with OpenBLAS), runs
+# tolerance 1e-4 h_c, quadrature degree 4, CHOLMOD with OpenBLAS), runs
 # each setting `reps` times (the median wall time is kept), and writes
 #   results/study.csv              one row per setting, failed runs included
 #   results/study-pareto.png       error against wall time, Pareto front
@@ -9,6 +9,8 @@
 #   results/study-time.png         where the time goes at each mesh level
 # Runs longer than 30 s are timed once (column reps).  Knob "method": the
 # node-to-surface Lagrange-multiplier method (-method nts) at each mesh level.
+# Knob "solver": the sparse direct solver at h_c = 0.025 (auto = CHOLMOD for
+# this symmetric scene; UMFPACK; MUMPS).
 # Usage: sh scripts/study.sh [quick | plots]   (plots: redraw from results/study.csv)
 cd "$(dirname "$0")/.." || exit 2
 mode=${1:-full}
@@ -28,7 +30,7 @@ val() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" | head -1; }
 tval() { grep '"time"' "$1" | sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" | head -1; }   # time split
 F_ref=$(val "$refjson" F); p0_ref=$(val "$refjson" p0_fit); a_ref=$(val "$refjson" a_fit)
 
-echo "knob,label,order,h_c,eps_factor,pentol,qdeg,converged,dofs,F,a,a_fit,p_max,p0_fit,a_hertz,p0_hertz,err_a,err_a_fit,err_p,err_p0_fit,err_F_ref,err_p0_ref,err_a_ref,max_penetration,newton,uzawa,factorizations,t_total,t_search,t_contact,t_bulk,t_solve,peak_mb,reps,method" > "$csv"
+echo "knob,label,order,h_c,eps_factor,pentol,qdeg,converged,dofs,F,a,a_fit,p_max,p0_fit,a_hertz,p0_hertz,err_a,err_a_fit,err_p,err_p0_fit,err_F_ref,err_p0_ref,err_a_ref,max_penetration,newton,uzawa,factorizations,t_total,t_search,t_contact,t_bulk,t_solve,peak_mb,reps,method,solver" > "$csv"
 
 run() {   # run <knob> <label> <args...>
     knob=$1; label=$2; shift 2
@@ -53,14 +55,15 @@ run() {   # run <knob> <label> <args...>
     q=$(echo "$@" | sed -n 's/.*-q \([^ ]*\).*/\1/p'); q=${q:-4}
     mem=$(tail -1 "$out.mem" 2>/dev/null | awk '{printf "%.1f", $1 / 1024}')
     method=al; case "$*" in *"-method nts"*) method=nts ;; esac
+    solver=$(val "$j" solver | tr -d '"'); solver=${solver:-?}
     if [ "$conv" = 1 ]; then
         F=$(val $j F); p0f=$(val $j p0_fit); af=$(val $j a_fit)
         eref=$(awk -v a="$F" -v b="$F_ref" 'BEGIN {printf "%.6g", (a - b) / b < 0 ? (b - a) / b : (a - b) / b}')
         epref=$(awk -v a="$p0f" -v b="$p0_ref" 'BEGIN {d = (a - b) / b; printf "%.6g", d < 0 ? -d : d}')
         earef=$(awk -v a="$af" -v b="$a_ref" 'BEGIN {d = (a - b) / b; printf "%.6g", d < 0 ? -d : d}')
-        echo "$knob,$label,$order,$hc,$ef,$pt,$q,1,$(val $j dofs),$F,$(val $j a),$af,$(val $j p_max),$p0f,$(val $j a_hertz),$(val $j p0_hertz),$(val $j err_a),$(val $j err_a_fit),$(val $j err_p),$(val $j err_p0_fit),$eref,$epref,$earef,$(val $j max_penetration),$(val $j newton_iterations),$(val $j uzawa_iterations),$(val $j factorizations),$tmed,$(tval $j search),$(tval $j contact_assembly),$(tval $j bulk_assembly),$(tval $j linear_solves),$mem,$n,$method" >> "$csv"
+        echo "$knob,$label,$order,$hc,$ef,$pt,$q,1,$(val $j dofs),$F,$(val $j a),$af,$(val $j p_max),$p0f,$(val $j a_hertz),$(val $j p0_hertz),$(val $j err_a),$(val $j err_a_fit),$(val $j err_p),$(val $j err_p0_fit),$eref,$epref,$earef,$(val $j max_penetration),$(val $j newton_iterations),$(val $j uzawa_iterations),$(val $j factorizations),$tmed,$(tval $j search),$(tval $j contact_assembly),$(tval $j bulk_assembly),$(tval $j linear_solves),$mem,$n,$method,$solver" >> "$csv"
     else
-        echo "$knob,$label,$order,$hc,$ef,$pt,$q,0,,,,,,,,,,,,,,,,,$(val $j newton_iterations),$(val $j uzawa_iterations),,$tmed,,,,,$mem,$n,$method" >> "$csv"
+        echo "$knob,$label,$order,$hc,$ef,$pt,$q,0,,,,,,,,,,,,,,,,,$(val $j newton_iterations),$(val $j uzawa_iterations),,$tmed,,,,,$mem,$n,$method,$solver" >> "$csv"
     fi
     echo "  $label: converged=$conv wall=$tmed s"
 }
@@ -83,6 +86,9 @@ else
     run combined p1-hc0.025-q2 -hc 0.025 -q 2
     run combined p2-hc0.05-q2 -hc 0.05 -q 2 -DQUADRATIC=1
     for h in 0.1 0.05 0.025 0.0125; do run method "nts-hc$h" -hc $h -method nts; done
+    run solver solver-UMFPACK -hc 0.025 -solver UMFPACK
+    run solver solver-MUMPS -DMUMPS=1 -hc 0.025 -solver MUMPS
+    run solver solver-UMFPACK-p2 -hc 0.05 -DQUADRATIC=1 -solver UMFPACK
 fi
 
 fi
