@@ -1,0 +1,45 @@
+// cattaneo.geo: half of an elastic hemisphere (radius 1, centre (0,0,1),
+// flat top z = 1, y >= 0) resting at the origin on a half block
+// [-2,2] x [0,2] x [-2,0]: the Hertz bodies cut by the plane y = 0 only,
+// for a tangential load along x.  Mesh size hc within distance 0.3 of the
+// origin, growing with slope 0.5 up to 0.25.
+//   gmsh -3 -format msh2 -setnumber hc 0.05 cattaneo.geo
+SetFactory("OpenCASCADE");
+DefineConstant[ hc = 0.05 ];
+Mesh.MshFileVersion = 2.2;
+Mesh.MeshSizeFromPoints = 0;
+Mesh.MeshSizeExtendFromBoundary = 0;
+Mesh.MeshSizeFromCurvature = 0;
+e = 1e-6;
+
+Sphere(1) = {0, 0, 1, 1};
+Box(2) = {-1.5, 0, 0, 3, 1.5, 1};
+ball() = BooleanIntersection{ Volume{1}; Delete; }{ Volume{2}; Delete; };
+Box(3) = {-2, 0, -2, 4, 2, 2};
+
+// hemisphere faces
+b_top() = Surface In BoundingBox{-1 - e, -e, 1 - e, 1 + e, 1 + e, 1 + e};
+b_y0()  = Surface In BoundingBox{-1 - e, -e, -e, 1 + e, e, 1 + e};
+b_all() = Boundary{ Volume{ball()}; };
+b_curved() = b_all();
+b_curved() -= {b_top(), b_y0()};
+// block faces
+k_top() = Surface In BoundingBox{-2 - e, -e, -e, 2 + e, 2 + e, e};
+k_bot() = Surface In BoundingBox{-2 - e, -e, -2 - e, 2 + e, 2 + e, -2 + e};
+k_y0()  = Surface In BoundingBox{-2 - e, -e, -2 - e, 2 + e, e, e};
+k_side() = Boundary{ Volume{3}; };
+k_side() -= {k_top(), k_bot(), k_y0()};
+
+Physical Volume("ball", 1) = {ball()};
+Physical Volume("block", 2) = {3};
+Physical Surface("ball_contact", 1) = {b_curved()};
+Physical Surface("ball_top", 2) = {b_top()};
+Physical Surface("ball_y0", 4) = {b_y0()};
+Physical Surface("block_top", 11) = {k_top()};
+Physical Surface("block_bottom", 12) = {k_bot()};
+Physical Surface("block_y0", 14) = {k_y0()};
+Physical Surface("block_sides", 15) = {k_side()};
+
+Field[1] = MathEval;
+Field[1].F = Sprintf("Min(0.25, %g + 0.5 * Max(0, Sqrt(x*x + y*y + z*z) - 0.3))", hc);
+Background Field = 1;
