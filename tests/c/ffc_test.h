@@ -66,6 +66,38 @@ static inline void test_sphere_facet(double R, double span, double X[6][3])
     }
 }
 
+/* One link's geometry, in two halves so that a caller may draw between
+ * them.  test_link_master: a master facet Xm (nm = 3: a fixed flat
+ * triangle; 6: a sphere facet), perturbed, a master point g inside it and
+ * the slave point's local coordinates xs. */
+static inline void test_link_master(int nm, uint64_t *s, double Xm[6][3], ffc_point *g, double xs[2])
+{
+    static const double T3[3][3] = {{0.1, -0.2, 0.3}, {1.3, 0.1, 0.2}, {0.2, 1.1, 0.5}};
+    if (nm == 3)
+        for (int a = 0; a < 3; a++)
+            for (int i = 0; i < 3; i++) Xm[a][i] = T3[a][i];
+    else test_sphere_facet(1.0, 0.8, Xm);
+    for (int a = 0; a < 6; a++)
+        for (int i = 0; i < 3; i++) Xm[a][i] += test_rand(s, -0.03, 0.03);
+    const double xm[2] = {test_rand(s, 0.25, 0.4), test_rand(s, 0.25, 0.4)};
+    ffc_facet_point(nm, (const double(*)[3])Xm, xm, g);
+    xs[0] = test_rand(s, 0.15, 0.45);
+    xs[1] = test_rand(s, 0.15, 0.4);
+}
+
+/* test_link_slave: a reversed small slave facet Xs whose point xs sits at
+ * g.x + offset g.n (perturbed), and its reference positions Xs0. */
+static inline void test_link_slave(int ns, const ffc_point *g, const double xs[2], double offset, uint64_t *s,
+                                   double Xs[6][3], double Xs0[6][3])
+{
+    for (int a = 0; a < ns; a++)
+        for (int i = 0; i < 3; i++) {
+            Xs[a][i] = g->x[i] + offset * g->n[i] + 0.4 * (test_node_xi[a][1] - xs[1]) * g->tau[0][i] +
+                       0.4 * (test_node_xi[a][0] - xs[0]) * g->tau[1][i] + test_rand(s, -0.02, 0.02);
+            Xs0[a][i] = Xs[a][i] + test_rand(s, -0.05, 0.05);
+        }
+}
+
 /* A contact pair of 41 nodes: a wavy 5 x 5 master grid (nodes 0..24, 32
  * facets, normals up) and a tilted 4 x 4 slave grid just below z = 0
  * (nodes 25..40, 18 facets, normals down), overlapping the master: part

@@ -177,28 +177,15 @@ static double *fc_coord(fcase *c, int k)
  * previous step by random increments; regime 1 stick, 2 slip */
 static void fc_make(fcase *c, int ns, int nm, int finite, int regime, uint64_t *s)
 {
-    static const double T3[3][3] = {{0.1, -0.2, 0.3}, {1.3, 0.1, 0.2}, {0.2, 1.1, 0.5}};
     memset(c, 0, sizeof *c);
     c->ns = ns;
     c->nm = nm;
     c->fx.finite_def = finite;
     c->fx.friction = 1;
-    if (nm == 3) memcpy(c->Xm, T3, sizeof T3);
-    else test_sphere_facet(1.0, 0.8, c->Xm);
-    for (int a = 0; a < 6; a++)
-        for (int i = 0; i < 3; i++) c->Xm[a][i] += test_rand(s, -0.03, 0.03);
     ffc_point g;
-    const double xm[2] = {test_rand(s, 0.25, 0.4), test_rand(s, 0.25, 0.4)};
-    ffc_facet_point(nm, (const double(*)[3])c->Xm, xm, &g);
-    c->xs[0] = test_rand(s, 0.15, 0.45);
-    c->xs[1] = test_rand(s, 0.15, 0.4);
+    test_link_master(nm, s, c->Xm, &g, c->xs);
     const double off = test_rand(s, -0.03, -0.005);
-    for (int a = 0; a < ns; a++)
-        for (int i = 0; i < 3; i++) {
-            c->Xs[a][i] = g.x[i] + off * g.n[i] + 0.4 * (test_node_xi[a][1] - c->xs[1]) * g.tau[0][i] +
-                          0.4 * (test_node_xi[a][0] - c->xs[0]) * g.tau[1][i] + test_rand(s, -0.02, 0.02);
-            c->Xs0[a][i] = c->Xs[a][i] + test_rand(s, -0.05, 0.05);
-        }
+    test_link_slave(ns, &g, c->xs, off, s, c->Xs, c->Xs0);
     for (int a = 0; a < 6; a++)
         for (int i = 0; i < 3; i++) {
             c->Xsp[a][i] = c->Xs[a][i] - test_rand(s, -0.02, 0.02);

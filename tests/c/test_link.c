@@ -29,29 +29,13 @@ static int lc_eval(const lcase *c, ffc_link_state *st, double R[FFC_MAXDOF], dou
  * point's foot inside; offset = normal distance of the slave point. */
 static void lc_make(lcase *c, int ns, int nm, int finite, double offset, uint64_t *s)
 {
-    static const double T3[3][3] = {{0.1, -0.2, 0.3}, {1.3, 0.1, 0.2}, {0.2, 1.1, 0.5}};
     memset(c, 0, sizeof *c);
     c->ns = ns;
     c->nm = nm;
     c->fx.finite_def = finite;
-    if (nm == 3) memcpy(c->Xm, T3, sizeof T3);
-    else test_sphere_facet(1.0, 0.8, c->Xm);
-    for (int a = 0; a < 6; a++)
-        for (int i = 0; i < 3; i++) c->Xm[a][i] += test_rand(s, -0.03, 0.03);
     ffc_point g;
-    const double xm[2] = {test_rand(s, 0.25, 0.4), test_rand(s, 0.25, 0.4)};
-    ffc_facet_point(nm, (const double(*)[3])c->Xm, xm, &g);
-    c->xs[0] = test_rand(s, 0.15, 0.45);
-    c->xs[1] = test_rand(s, 0.15, 0.4);
-    double N[6];
-    ffc_shape(ns, c->xs, N, NULL);
-    /* slave nodes: a reversed small facet whose point xs sits at x(xm) + offset n */
-    for (int a = 0; a < ns; a++)
-        for (int i = 0; i < 3; i++) {
-            c->Xs[a][i] = g.x[i] + offset * g.n[i] + 0.4 * (test_node_xi[a][1] - c->xs[1]) * g.tau[0][i] +
-                          0.4 * (test_node_xi[a][0] - c->xs[0]) * g.tau[1][i] + test_rand(s, -0.02, 0.02);
-            c->Xs0[a][i] = c->Xs[a][i] + test_rand(s, -0.05, 0.05);
-        }
+    test_link_master(nm, s, c->Xm, &g, c->xs);
+    test_link_slave(ns, &g, c->xs, offset, s, c->Xs, c->Xs0);
     c->w = 0.5;
     c->eps = 50.0;
 }
