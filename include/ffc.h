@@ -309,7 +309,11 @@ typedef struct {
     const double *X;   /* [nv*3] reference positions (length) */
     const double *u;   /* [nv*3] displacements (length) */
     const double *u_prev; /* [nv*3] displacements at the last converged step
-                          (length); read only when friction is on */
+                          (length); read only when friction is on in a
+                          quasi-static scene */
+    const double *v;   /* [nv*3] velocities at the end of the step (length/time);
+                          read only when friction is on in a dynamic scene
+                          (effects->dynamic), in place of u_prev */
 } ffc_pair;
 
 /* The contact law and where its multipliers live. */
@@ -330,23 +334,40 @@ typedef struct {
                           consistent tangent is indefinite; 0: consistent */
     double mu;         /* Coulomb coefficient (1), >= 0; read only when
                           effects->friction (mu = 0 then skips all friction work) */
-    double eps_t;      /* tangential penalty (force/length^3), > 0 when friction */
+    double eps_t;      /* tangential penalty, > 0 when friction: force/length^3
+                          (quasi-static: T_tr = lambda_T + eps_t r), or
+                          force*time/length^3 (dynamic: T_tr = lambda_T + eps_t v_rel) */
+    double dt;         /* time step (time), > 0 when friction is on in a dynamic
+                          scene: the slip reported over the step is dt v_rel */
+    double dvdu;       /* dynamic friction: the time integrator's d v / d u at the
+                          end of the step (1/time, e.g. gamma / (beta dt) for
+                          Newmark), >= 0.  The tangent is K + dvdu D with
+                          D = dR/dv the damping matrix; 0 gives K alone */
 } ffc_law;
 
 /* ------------------------------------------------------ Coulomb friction */
-/* Formulation (quasi-static, incremental).  At a slave point, the slip r
- * is the relative motion of the slave point over the master material
- * point under it since the last converged step,
- *     r = sum_a N1_a (x_a - x_a^n) - sum_b N2_b(xi) (x_b - x_b^n),
- * (the seed's velocity form uses r = dt v_rel: the same law with the
- * increment written as a rate).  With the tangential multiplier lambda_T
- * (a 3-vector in the tangent plane), the trial traction is
+/* Formulation.  Two forms of the same law, chosen by effects->dynamic.
+ * Quasi-static (incremental): the slip r is the relative motion of the
+ * slave point over the master material point under it since the last
+ * converged step,
+ *     r = sum_a N1_a (x_a - x_a^n) - sum_b N2_b(xi) (x_b - x_b^n).
+ * Dynamic (the seed's velocity form): the relative velocity
+ *     r = v_rel = sum_a N1_a v_a - sum_b N2_b(xi) v_b
+ * takes its place, with eps_T in force*time/length^3.  With the
+ * tangential multiplier lambda_T (a 3-vector in the tangent plane), the
+ * trial traction is
  *     T_tr = P (lambda_T + eps_T r),   P = I - n n^T,
  * whose Euclidean norm equals the metric norm sqrt(t_a m^ab t_b) of its
  * covariant components.  Return map: stick when |T_tr| < mu t_N (T =
  * T_tr), slip otherwise (T = mu t_N T_tr / |T_tr|), with the current
  * t_N so that the slip bound is linearized with it.  T resists the slip:
- * the slave is pushed by -T, the master by +T. */
+ * the slave is pushed by -T, the master by +T.
+ * The two forms agree when the velocity is the backward difference
+ * v = (x - x^n) / dt and eps_T(dynamic) = eps_T(quasi-static) dt.  In the
+ * velocity form the derivative of the residual splits into a stiffness
+ * K = dR/du at fixed velocities (the foot slides, the normal turns) and
+ * the damping matrix D = dR/dv; with the integrator's v(u) the tangent
+ * is K + (dv/du) D (law->dvdu). */
 enum { FFC_FRIC_OPEN = 0, FFC_FRIC_STICK = 1, FFC_FRIC_SLIP = 2 };
 
 /* Result of the return map at one point. */
@@ -367,13 +388,15 @@ int ffc_friction_map(const double n[3], const double lam_t[3], const double r[3]
 
 /* Residual and tangent of one link with the law's friction: as
  * ffc_link_normal with, when effects->friction and law->mu > 0, the
- * previous positions Xsp[ns][3], Xmp[nm][3] (last converged step) and the
- * multiplier lam_t[3].  Friction residual da S^T T with S = dr/du at fixed
- * foot; its tangent includes the slip of the foot, the turning of the
- * normal and the pressure's variation (non-symmetric). */
+ * motion of the nodes Ds[ns][3], Dm[nm][3] (quasi-static: x - x^n since
+ * the last converged step; dynamic: the velocities) and the multiplier
+ * lam_t[3].  Friction residual da S^T T with S = dr/dD at fixed foot;
+ * its tangent includes the slip of the foot, the turning of the normal
+ * and the pressure's variation (non-symmetric); dynamic: K + law->dvdu D.
+ * st->slip is r (quasi-static) or law->dt r (dynamic). */
 int ffc_link_contact(const ffc_effects *effects, int ns, const double Xs[][3],
-                     const double Xs0[][3], const double Xsp[][3], const double xs[2],
-                     double w, int nm, const double Xm[][3], const double Xmp[][3],
+                     const double Xs0[][3], const double Ds[][3], const double xs[2],
+                     double w, int nm, const double Xm[][3], const double Dm[][3],
                      double lambda, const double lam_t[3], const ffc_law *law,
                      ffc_link_state *st, double R[FFC_MAXDOF],
                      double K[FFC_MAXDOF][FFC_MAXDOF]);

@@ -135,34 +135,47 @@ int ffc_friction_map(const double n[3], const double lam_t[3], const double r[3]
     return FFC_OK;
 }
 
-/* slip r = sum_a N1_a (x_a - x_a^n) - sum_b N2_b (x_b - x_b^n) */
-static void link_slip(const lgeo_t *g, const double Xs[][3], const double Xsp[][3], const double Xm[][3],
-                      const double Xmp[][3], double r[3])
+/* slip r = sum_a N1_a Ds_a - sum_b N2_b(xi) Dm_b, with the nodal motion D
+ * = x - x^n (quasi-static) or the velocity v (dynamic) */
+static void link_slip(const lgeo_t *g, const double Ds[][3], const double Dm[][3], double r[3])
 {
     for (int i = 0; i < 3; i++) {
         double v = 0.0;
-        for (int a = 0; a < g->ns; a++) v += g->N1[a] * (Xs[a][i] - Xsp[a][i]);
-        for (int b = 0; b < g->nm; b++) v -= g->N2[b] * (Xm[b][i] - Xmp[b][i]);
+        for (int a = 0; a < g->ns; a++) v += g->N1[a] * Ds[a][i];
+        for (int b = 0; b < g->nm; b++) v -= g->N2[b] * Dm[b][i];
         r[i] = v;
     }
 }
 
-/* Q = dr/du (3 x nd) = S - sum_b (x_b - x_b^n) (N2_b,alpha dxi_alpha/du)^T,
- * S (3 x nd) = [N1_a I ; -N2_b(xi) I]; sw[k] the weight of S in row k % 3
- * of column k.  material_only: Q = S. */
-static void link_slip_deriv(const lgeo_t *g, const double Xm[][3], const double Xmp[][3], int material_only,
+/* Q = dr/du (3 x nd) = c S - sum_b Dm_b (N2_b,alpha dxi_alpha/du)^T, with
+ * S (3 x nd) = [N1_a I ; -N2_b(xi) I] = dr/dD at fixed foot and c = dD/du
+ * (1 quasi-static; the integrator's dv/du dynamic, where c S is the
+ * damping part); sw[k] the weight of S in row k % 3 of column k.
+ * material_only: Q = c S. */
+static void link_slip_deriv(const lgeo_t *g, const double Dm[][3], double c, int material_only,
                             double sw[FFC_MAXDOF], double Q[3][FFC_MAXDOF])
 {
     const int ns = g->ns, nd = g->nd;
     for (int k = 0; k < nd; k++) sw[k] = k < 3 * ns ? g->N1[k / 3] : -g->N2[(k - 3 * ns) / 3];
     for (int l = 0; l < nd; l++) {
-        for (int j = 0; j < 3; j++) Q[j][l] = (l % 3 == j) ? sw[l] : 0.0;
+        for (int j = 0; j < 3; j++) Q[j][l] = (l % 3 == j) ? c * sw[l] : 0.0;
         if (material_only) continue;
         for (int b = 0; b < g->nm; b++) {
             const double dx = g->dN2[b][0] * g->dxi[0][l] + g->dN2[b][1] * g->dxi[1][l];
-            for (int j = 0; j < 3; j++) Q[j][l] -= (Xm[b][j] - Xmp[b][j]) * dx;
+            for (int j = 0; j < 3; j++) Q[j][l] -= Dm[b][j] * dx;
         }
     }
+}
+
+/* dD/du of the friction motion (1, or law->dvdu in the velocity form) and
+ * the factor from the map's r to the slip over the step (1, or law->dt) */
+static double motion_coef(const ffc_effects *fx, const ffc_law *law)
+{
+    return fx->dynamic ? law->dvdu : 1.0;
+}
+static double slip_scale(const ffc_effects *fx, const ffc_law *law)
+{
+    return fx->dynamic ? law->dt : 1.0;
 }
 
 /* Formulation (friction at one link, traction T held fixed).  Residual
@@ -190,15 +203,17 @@ static void link_friction_geo(const lgeo_t *g, double da, const double sw[FFC_MA
  *     dT/du = dT/dr Q + dT/dn dn/du + dT/dt_N (dt_N/du)^T,
  *     K_f = da S^T (dT/dr Q + dT/dn dn/du) + (link_friction_geo)
  *         + F (dt_N/du)^T,   F = da S^T dT/dt_N  (returned; the caller
- * knows dt_N/du = -eps_N G).  material_only keeps da S^T dT/dr S and F. */
-static void link_friction(const lgeo_t *g, const ffc_link_state *st, const double Xm[][3],
-                          const double Xmp[][3], const ffc_fric *f, int material_only,
+ * knows dt_N/du = -eps_N G).  material_only keeps da S^T dT/dr c S and F.
+ * Dynamic: Q = c S + (foot sliding at fixed velocities), so the c-part
+ * da S^T dT/dr S is the damping matrix D (times c = dv/du). */
+static void link_friction(const lgeo_t *g, const ffc_link_state *st, const double Dm[][3], double c,
+                          const ffc_fric *f, int material_only,
                           double R[FFC_MAXDOF], double K[FFC_MAXDOF][FFC_MAXDOF], double F[FFC_MAXDOF])
 {
     const int nd = g->nd;
     const double da = st->da;
     double sw[FFC_MAXDOF], Q[3][FFC_MAXDOF];
-    link_slip_deriv(g, Xm, Xmp, material_only, sw, Q);
+    link_slip_deriv(g, Dm, c, material_only, sw, Q);
     for (int k = 0; k < nd; k++) {
         R[k] += da * sw[k] * f->t[k % 3];
         F[k] = da * sw[k] * f->dt_dtn[k % 3];
@@ -224,6 +239,12 @@ static int friction_on(const ffc_effects *fx, const ffc_law *law)
     return fx->friction && law->mu > 0.0;
 }
 
+/* the velocity form's time step and dv/du: dt > 0, dvdu >= 0, finite */
+static int dynamic_ok(const ffc_law *law)
+{
+    return law->dt > 0 && isfinite(law->dt) && law->dvdu >= 0 && isfinite(law->dvdu);
+}
+
 /* Formulation (frictionless, pointwise; gap g = n . (x_s - x_m) >= 0 open).
  * A link is a slave point x_s = sum_a N1_a(xs) x_a with area da = w J_s,
  * and its foot xi on the master facet: tau_a(xi) . (x_s - x_m(xi)) = 0.
@@ -236,8 +257,8 @@ static int friction_on(const ffc_effects *fx, const ffc_law *law)
  * with G, D, dda from link_geometry.  With friction, link_friction adds
  * its terms and the coupling F (dt_N/du)^T = -eps F G^T. */
 int ffc_link_contact(const ffc_effects *effects, int ns, const double Xs[][3],
-                     const double Xs0[][3], const double Xsp[][3], const double xs[2],
-                     double w, int nm, const double Xm[][3], const double Xmp[][3],
+                     const double Xs0[][3], const double Ds[][3], const double xs[2],
+                     double w, int nm, const double Xm[][3], const double Dm[][3],
                      double lambda, const double lam_t[3], const ffc_law *law,
                      ffc_link_state *st, double R[FFC_MAXDOF],
                      double K[FFC_MAXDOF][FFC_MAXDOF])
@@ -247,7 +268,8 @@ int ffc_link_contact(const ffc_effects *effects, int ns, const double Xs[][3],
     const double eps = law->eps_n;
     if (!(eps > 0) || isinf(eps) || !isfinite(lambda) || !(w > 0)) return FFC_ERR_VALUE;
     const int fric = friction_on(effects, law);
-    if (fric && (!Xsp || !Xmp || !lam_t)) return FFC_ERR_NULL;
+    if (fric && (!Ds || !Dm || !lam_t)) return FFC_ERR_NULL;
+    if (fric && effects->dynamic && !dynamic_ok(law)) return FFC_ERR_VALUE;
     const int nd = 3 * (ns + nm);
     for (int k = 0; k < nd; k++) R[k] = 0.0;
     if (K)
@@ -273,14 +295,16 @@ int ffc_link_contact(const ffc_effects *effects, int ns, const double Xs[][3],
                                              : da * (eps * g.G[k] * g.G[l] - tn * K[k][l]) - tn * g.G[k] * g.dda[l];
     }
     if (!fric) return FFC_OK;
-    link_slip(&g, Xs, Xsp, Xm, Xmp, st->slip);
+    double r[3];
+    link_slip(&g, Ds, Dm, r);
     ffc_fric f;
-    s = ffc_friction_map(st->n, lam_t, st->slip, law->mu, law->eps_t, tn, &f);
+    s = ffc_friction_map(st->n, lam_t, r, law->mu, law->eps_t, tn, &f);
     if (s) return s;
-    for (int i = 0; i < 3; i++) st->t[i] = f.t[i];
+    const double sc = slip_scale(effects, law);
+    for (int i = 0; i < 3; i++) { st->t[i] = f.t[i]; st->slip[i] = sc * r[i]; }
     st->fstate = f.state;
     double F[FFC_MAXDOF];
-    link_friction(&g, st, Xm, Xmp, &f, law->material_only, R, K, F);
+    link_friction(&g, st, Dm, motion_coef(effects, law), &f, law->material_only, R, K, F);
     if (K)
         for (int k = 0; k < nd; k++)
             for (int l = 0; l < nd; l++) K[k][l] -= eps * F[k] * g.G[l];
@@ -296,7 +320,7 @@ int ffc_link_normal(const ffc_effects *effects, int ns, const double Xs[][3],
     if (!effects) return FFC_ERR_NULL;
     ffc_effects fx = *effects;
     fx.friction = 0;
-    ffc_law law = {eps, 0, 0, 0.0, 0.0};
+    ffc_law law = {eps, 0, 0, 0.0, 0.0, 0.0, 0.0};
     return ffc_link_contact(&fx, ns, Xs, Xs0, NULL, xs, w, nm, Xm, NULL, lambda, NULL, &law, st, R, K);
 }
 
@@ -310,16 +334,18 @@ static int check_pair(const ffc_pair *P)
     return FFC_OK;
 }
 
-/* nodes of facet f: current P, reference P0, previous Pp (when u_prev), dofs */
-static void gather(int nn, const long *F, long f, const double X[], const double u[], const double up[],
-                   double P[][3], double P0[][3], double Pp[][3], long dof[])
+/* nodes of facet f: current P, reference P0, dofs, and the friction
+ * motion D: u - u_prev (quasi-static, mo = u_prev), the velocity (dynamic,
+ * mo = v) or zero (mo = NULL) */
+static void gather(int nn, const long *F, long f, const double X[], const double u[], const double mo[],
+                   int velocity, double P[][3], double P0[][3], double D[][3], long dof[])
 {
     for (int a = 0; a < nn; a++) {
         long v = F[f * nn + a];
         for (int i = 0; i < 3; i++) {
             P0[a][i] = X[3 * v + i];
             P[a][i] = X[3 * v + i] + u[3 * v + i];
-            Pp[a][i] = up ? X[3 * v + i] + up[3 * v + i] : P0[a][i];
+            D[a][i] = !mo ? 0.0 : velocity ? mo[3 * v + i] : u[3 * v + i] - mo[3 * v + i];
             dof[3 * a + i] = 3 * v + i;
         }
     }
@@ -327,21 +353,22 @@ static void gather(int nn, const long *F, long f, const double X[], const double
 
 /* The facets of one link, gathered. */
 typedef struct {
-    double Xs[FFC_MAXNODES][3], Xs0[FFC_MAXNODES][3], Xsp[FFC_MAXNODES][3];
-    double Xm[FFC_MAXNODES][3], Xm0[FFC_MAXNODES][3], Xmp[FFC_MAXNODES][3];
+    double Xs[FFC_MAXNODES][3], Xs0[FFC_MAXNODES][3], Ds[FFC_MAXNODES][3];
+    double Xm[FFC_MAXNODES][3], Xm0[FFC_MAXNODES][3], Dm[FFC_MAXNODES][3];
     long dof[FFC_MAXDOF];
     int nd;
 } lnodes_t;
 
-static int gather_link(const ffc_pair *P, int nq, const ffc_link *lk, lnodes_t *n)
+static int gather_link(const ffc_effects *fx, const ffc_pair *P, int nq, const ffc_link *lk, lnodes_t *n)
 {
     if (lk->sf < 0 || lk->sf >= P->nfs || lk->q < 0 || lk->q >= nq || lk->mf >= P->nfm) return FFC_ERR_INDEX;
     for (int a = 0; a < P->ns; a++)
         if (P->Fs[lk->sf * P->ns + a] < 0 || P->Fs[lk->sf * P->ns + a] >= P->nv) return FFC_ERR_INDEX;
     for (int a = 0; a < P->nm; a++)
         if (P->Fm[lk->mf * P->nm + a] < 0 || P->Fm[lk->mf * P->nm + a] >= P->nv) return FFC_ERR_INDEX;
-    gather(P->ns, P->Fs, lk->sf, P->X, P->u, P->u_prev, n->Xs, n->Xs0, n->Xsp, n->dof);
-    gather(P->nm, P->Fm, lk->mf, P->X, P->u, P->u_prev, n->Xm, n->Xm0, n->Xmp, n->dof + 3 * P->ns);
+    const double *mo = fx->dynamic ? P->v : P->u_prev;
+    gather(P->ns, P->Fs, lk->sf, P->X, P->u, mo, fx->dynamic, n->Xs, n->Xs0, n->Ds, n->dof);
+    gather(P->nm, P->Fm, lk->mf, P->X, P->u, mo, fx->dynamic, n->Xm, n->Xm0, n->Dm, n->dof + 3 * P->ns);
     n->nd = 3 * (P->ns + P->nm);
     return FFC_OK;
 }
@@ -356,12 +383,12 @@ static int eval_link(const ffc_effects *fx, const ffc_pair *P, const double qw[]
                      long dof[FFC_MAXDOF], int *nd)
 {
     lnodes_t n;
-    int s = gather_link(P, nq, lk, &n);
+    int s = gather_link(fx, P, nq, lk, &n);
     if (s) return s;
     memcpy(dof, n.dof, sizeof n.dof);
     *nd = n.nd;
-    return ffc_link_contact(fx, P->ns, CP3(n.Xs), CP3(n.Xs0), CP3(n.Xsp), lk->xs, qw[lk->q], P->nm, CP3(n.Xm),
-                            CP3(n.Xmp), lambda, lam_t, law, st, R, K);
+    return ffc_link_contact(fx, P->ns, CP3(n.Xs), CP3(n.Xs0), CP3(n.Ds), lk->xs, qw[lk->q], P->nm, CP3(n.Xm),
+                            CP3(n.Dm), lambda, lam_t, law, st, R, K);
 }
 
 static void stats_init(ffc_stats *s)
@@ -416,7 +443,9 @@ static int common_checks(const ffc_effects *fx, const ffc_pair *P, int qdeg, lon
     if (fx->friction && (!(law->mu >= 0) || isinf(law->mu))) return FFC_ERR_VALUE;
     const int fric = friction_on(fx, law);
     if (fric && (!(law->eps_t > 0) || isinf(law->eps_t))) return FFC_ERR_VALUE;
-    if (fric && (!lam_t || !P->u_prev)) return FFC_ERR_NULL;
+    if (fric && fx->dynamic && !dynamic_ok(law)) return FFC_ERR_VALUE;
+    const double *mo = fx->dynamic ? P->v : P->u_prev;
+    if (fric && (!lam_t || !mo)) return FFC_ERR_NULL;
     double qxi[16][2];
     *nq = ffc_quad(qdeg, 16, qxi, qw);
     if (*nq < 0) return *nq;
@@ -430,7 +459,7 @@ static int common_checks(const ffc_effects *fx, const ffc_pair *P, int qdeg, lon
         for (long k = 0; k < 3 * n; k++)
             if (!isfinite(lam_t[k])) { *bad = k / 3; return FFC_ERR_NONFINITE; }
         for (long k = 0; k < 3 * P->nv; k++)
-            if (!isfinite(P->u_prev[k])) return FFC_ERR_NONFINITE;
+            if (!isfinite(mo[k])) return FFC_ERR_NONFINITE;
     }
     return FFC_OK;
 }
@@ -478,7 +507,7 @@ typedef struct {
 
 /* friction data of a linked point (nodal law with friction) */
 typedef struct {
-    double r[3];                /* slip since the last converged step */
+    double r[3];                /* slip since the last converged step, or relative velocity (dynamic) */
     double sw[FFC_MAXDOF];      /* weights of S */
     double Q[3][FFC_MAXDOF];    /* dr/du */
     double dn[3][FFC_MAXDOF];   /* dn/du */
@@ -486,7 +515,7 @@ typedef struct {
 
 /* return map at a node */
 typedef struct {
-    double r[3], n[3], mnorm;   /* weighted slip, normal n~, |m| */
+    double r[3], n[3], mnorm;   /* weighted slip (or relative velocity), normal n~, |m| */
     ffc_fric f;                 /* traction T_a and its derivatives */
 } nfn_t;
 
@@ -543,7 +572,7 @@ static int nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double 
         if (lk->mf < 0) continue;
         nlink_t *e = &w->L[w->n];
         lnodes_t ln;
-        int s = gather_link(P, nq, lk, &ln);
+        int s = gather_link(fx, P, nq, lk, &ln);
         if (s) { *bad = k; nodal_free(w); return s; }
         memcpy(e->dof, ln.dof, sizeof ln.dof);
         e->k = k;
@@ -564,8 +593,8 @@ static int nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double 
         for (int a = 3; a < P->ns; a++) e->N[a] = 0.0;
         if (lam_t) {
             nfl_t *fl = &w->F[w->n];
-            link_slip(&g, CP3(ln.Xs), CP3(ln.Xsp), CP3(ln.Xm), CP3(ln.Xmp), fl->r);
-            link_slip_deriv(&g, CP3(ln.Xm), CP3(ln.Xmp), law->material_only, fl->sw, fl->Q);
+            link_slip(&g, CP3(ln.Ds), CP3(ln.Dm), fl->r);
+            link_slip_deriv(&g, CP3(ln.Dm), motion_coef(fx, law), law->material_only, fl->sw, fl->Q);
             memcpy(fl->dn, g.dn, sizeof fl->dn);
         }
         for (int a = 0; a < P->ns; a++) {
@@ -606,7 +635,7 @@ static int nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double 
                 stats->slip += T->f.state == FFC_FRIC_SLIP;
                 const double tt = sqrt(ffc__dot(T->f.t, T->f.t));
                 if (tt > stats->max_tt) stats->max_tt = tt;
-                stats->dissipation += w->Wn[v] * ffc__dot(T->f.t, T->r);
+                stats->dissipation += slip_scale(fx, law) * w->Wn[v] * ffc__dot(T->f.t, T->r);
             }
         }
     return FFC_OK;
@@ -731,7 +760,7 @@ static int assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double
             for (int a = 0; a < E->nd; a++) R[E->dof[a]] += E->da * w.F[e].sw[a] * Tq[a % 3];
         if (!want_k || material_only) continue;
         lnodes_t ln;
-        s = gather_link(P, nq, lk, &ln);
+        s = gather_link(fx, P, nq, lk, &ln);
         ffc_link_state sg;
         lgeo_t g;
         if (!s)
@@ -970,7 +999,7 @@ int ffc_points(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
                     st.active = st.tn > 0.0;
                     if (fric) {
                         nodal_point_traction(pair, lk, E, w.T, st.t, &st.fstate);
-                        for (int i = 0; i < 3; i++) st.slip[i] = w.F[e].r[i];
+                        for (int i = 0; i < 3; i++) st.slip[i] = slip_scale(effects, law) * w.F[e].r[i];
                     }
                     e++;
                 }

@@ -517,8 +517,7 @@ ffc_effects need_effects(const char *fn, long bits)
         s << "argument 'opt': effects = opt[1] = " << bits << " is not a set of effects (bits: 1 friction, 2 dynamic, 4 finite deformation)";
         fail(fn, s.str());
     }
-    if (bits & 2) fail(fn, "argument 'opt': dynamic contact (bit 2) is not available in this version");
-    ffc_effects e = {(bits & 1) ? 1 : 0, 0, (bits & 4) ? 1 : 0};
+    ffc_effects e = {(bits & 1) ? 1 : 0, (bits & 2) ? 1 : 0, (bits & 4) ? 1 : 0};
     return e;
 }
 
@@ -541,7 +540,9 @@ struct LinkCall {
 // multipliers (1: at slave nodes, lambda[nv], default; 0: at slave
 // quadrature points, lambda[nlinks]), tangent (0: consistent, default;
 // 1: material part only, positive semi-definite), and with friction
-// (effects bit 1) mu (>= 0) and eps_T (> 0, force/length^3)].
+// (effects bit 1) mu (>= 0) and eps_T (> 0), storage (0 full, 1 lower
+// triangle), and with friction in a dynamic scene (bits 1 and 2) the time
+// step dt (> 0) and the integrator's dv/du (>= 0)].
 struct Options {
     ffc_effects fx;
     ffc_law law;
@@ -603,6 +604,25 @@ Options need_options(const char *fn, KN<double> *opt)
         if (!(o.law.eps_t > 0) || std::isinf(o.law.eps_t))
             fail(fn, "argument 'opt': tangential penalty epsT = opt[5] = " + num(o.law.eps_t) + " must be finite and > 0");
     }
+    o.law.dt = 0.0;
+    o.law.dvdu = 0.0;
+    if (o.fx.friction && o.fx.dynamic) {
+        if (opt->N() < 9) {
+            std::ostringstream st;
+            st << "argument 'opt': size " << opt->N()
+               << "; friction in a dynamic scene (effects bits 1 and 2) needs [epsN, effects, multipliers, tangent, mu, "
+                  "epsT, storage, dt, dvdu]";
+            fail(fn, st.str());
+        }
+        o.law.dt = (*opt)[7];
+        o.law.dvdu = (*opt)[8];
+        if (!(o.law.dt > 0) || std::isinf(o.law.dt))
+            fail(fn, "argument 'opt': time step dt = opt[7] = " + num(o.law.dt) +
+                         " must be finite and > 0 (dynamic friction works on velocities)");
+        if (!(o.law.dvdu >= 0) || std::isinf(o.law.dvdu))
+            fail(fn, "argument 'opt': dv/du = opt[8] = " + num(o.law.dvdu) +
+                         " must be finite and >= 0 (the time integrator's derivative of the velocity, e.g. gamma / (beta dt))");
+    }
     return o;
 }
 
@@ -617,17 +637,17 @@ void need_finite(const char *fn, const char *name, KN<double> *x)
         }
 }
 
-// The displacement of the last converged step (argument 'uprev'): the
-// size of u, finite.
-const double *need_uprev(const char *fn, KN<double> *up, KN<double> *u)
+// The displacement of the last converged step (argument 'uprev'), or in
+// a dynamic scene the velocity (argument 'v'): the size of u, finite.
+const double *need_uprev(const char *fn, KN<double> *up, KN<double> *u, const char *name = "uprev")
 {
-    if (!up) fail(fn, "argument 'uprev': array is not defined");
+    if (!up) fail(fn, std::string("argument '") + name + "': array is not defined");
     if (up->N() != u->N()) {
         std::ostringstream s;
-        s << "argument 'uprev': size " << up->N() << ", expected the size of 'u' (" << u->N() << ")";
+        s << "argument '" << name << "': size " << up->N() << ", expected the size of 'u' (" << u->N() << ")";
         fail(fn, s.str());
     }
-    need_finite(fn, "uprev", up);
+    need_finite(fn, name, up);
     return &(*up)[0];
 }
 
@@ -705,14 +725,17 @@ void need_links(const char *fn, pmesh3 pTh, KN<double> *u, KN<long> *CP,
     c.pair.nm = (int)P.nm; c.pair.nfm = c.nfm; c.pair.Fm = P.Fm;
     c.pair.nv = c.nn; c.pair.X = X; c.pair.u = c.u;
     c.pair.u_prev = nullptr;
+    c.pair.v = nullptr;
     if (o.fx.friction && !history_form) {
         std::ostringstream s;
         s << "friction (effects bit 1) needs the friction history: call " << fn
-          << "(Th, u, uprev, CP, L, lambda, lambdaT, opt, ...) with the displacement of the last converged step and the tangential multipliers";
+          << (o.fx.dynamic ? "(Th, u, v, CP, L, lambda, lambdaT, opt, ...) with the velocity at the end of the step"
+                           : "(Th, u, uprev, CP, L, lambda, lambdaT, opt, ...) with the displacement of the last converged step")
+          << " and the tangential multipliers";
         fail(fn, s.str());
     }
     if (!history_form) return;
-    const double *uprev = need_uprev(fn, up, u);
+    const double *uprev = need_uprev(fn, up, u, o.fx.dynamic ? "v" : "uprev");
     if (!lamT) fail(fn, "argument 'lambdaT': array is not defined");
     const long nlt = 3 * (o.law.nodal ? c.nn : c.nl);
     if (lamT->N() != nlt) {
@@ -722,7 +745,8 @@ void need_links(const char *fn, pmesh3 pTh, KN<double> *u, KN<long> *CP,
         fail(fn, s.str());
     }
     need_finite(fn, "lambdaT", lamT);
-    c.pair.u_prev = uprev;
+    if (o.fx.dynamic) c.pair.v = uprev;
+    else c.pair.u_prev = uprev;
     c.lam_t = &(*lamT)[0];
 }
 
@@ -997,6 +1021,7 @@ void need_nts(const char *fn, pmesh3 pTh, KN<double> *u, KN<double> *up, KN<long
     c.pair.nm = 3; c.pair.nfm = P.nfm; c.pair.Fm = P.Fm;
     c.pair.nv = c.m.nv; c.pair.X = c.m.X.data(); c.pair.u = pu;
     c.pair.u_prev = nullptr;
+    c.pair.v = nullptr;
     if (up) c.pair.u_prev = need_uprev(fn, up, u);
 }
 

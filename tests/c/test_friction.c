@@ -2,7 +2,9 @@
  * idempotence, objectivity, limits, derivatives), the link tangent in
  * stick and in slip against central differences (flat and curved facets,
  * small strain and finite deformation), the assembled tangent of both
- * multiplier laws, the Uzawa update, and mu = 0 against frictionless. */
+ * multiplier laws, the Uzawa update, mu = 0 against frictionless, and the
+ * velocity form (stiffness at fixed velocities, damping matrix against
+ * differences in the velocities, agreement with the incremental form). */
 #include "ffc_test.h"
 
 #include <stdlib.h>
@@ -155,7 +157,7 @@ static void test_map_derivatives(void **state)
 /* ------------------------------------------------------------ one link */
 typedef struct {
     int ns, nm;
-    double Xs[6][3], Xs0[6][3], Xsp[6][3], Xm[6][3], Xmp[6][3];
+    double Xs[6][3], Xs0[6][3], Ds[6][3], Xm[6][3], Dm[6][3]; /* D: motion (x - x^n, or velocity) */
     double xs[2], w, lambda, lam_t[3];
     ffc_effects fx;
     ffc_law law;
@@ -164,13 +166,18 @@ typedef struct {
 static int fc_eval(const fcase *c, ffc_link_state *st, double R[FFC_MAXDOF], double K[FFC_MAXDOF][FFC_MAXDOF])
 {
     return ffc_link_contact(&c->fx, c->ns, (const double(*)[3])c->Xs, (const double(*)[3])c->Xs0,
-                            (const double(*)[3])c->Xsp, c->xs, c->w, c->nm, (const double(*)[3])c->Xm,
-                            (const double(*)[3])c->Xmp, c->lambda, c->lam_t, &c->law, st, R, K);
+                            (const double(*)[3])c->Ds, c->xs, c->w, c->nm, (const double(*)[3])c->Xm,
+                            (const double(*)[3])c->Dm, c->lambda, c->lam_t, &c->law, st, R, K);
 }
 
 static double *fc_coord(fcase *c, int k)
 {
     return k < 3 * c->ns ? &c->Xs[k / 3][k % 3] : &c->Xm[(k - 3 * c->ns) / 3][k % 3];
+}
+
+static double *fc_motion(fcase *c, int k)
+{
+    return k < 3 * c->ns ? &c->Ds[k / 3][k % 3] : &c->Dm[(k - 3 * c->ns) / 3][k % 3];
 }
 
 /* a slave point pressed on a (flat or curved) master facet, moved since the
@@ -188,8 +195,8 @@ static void fc_make(fcase *c, int ns, int nm, int finite, int regime, uint64_t *
     test_link_slave(ns, &g, c->xs, off, s, c->Xs, c->Xs0);
     for (int a = 0; a < 6; a++)
         for (int i = 0; i < 3; i++) {
-            c->Xsp[a][i] = c->Xs[a][i] - test_rand(s, -0.02, 0.02);
-            c->Xmp[a][i] = c->Xm[a][i] - test_rand(s, -0.02, 0.02);
+            c->Ds[a][i] = test_rand(s, -0.02, 0.02);
+            c->Dm[a][i] = test_rand(s, -0.02, 0.02);
         }
     for (int i = 0; i < 3; i++) c->lam_t[i] = test_rand(s, -0.5, 0.5);
     c->w = 0.5;
@@ -207,22 +214,39 @@ static void fc_make(fcase *c, int ns, int nm, int finite, int regime, uint64_t *
     c->law.mu = (regime == FFC_FRIC_STICK ? 2.0 : 0.5) * ttr / st.tn;
 }
 
-/* central differences, h = 1e-6 on unit-size facets (as test_link.c) */
-static void fc_check(fcase *c, int regime)
+/* Central differences, h = 1e-6 on unit-size facets (as test_link.c).
+ * A change h of a nodal position changes the node's motion by cm h (1 for
+ * x - x^n; the integrator's dv/du for a velocity) and the motion alone by
+ * cv h; the matrix checked is K (cm = coef, cv = 0: law->dvdu = coef in
+ * the velocity form) or the damping matrix D (cm = 0, cv = 1: the
+ * difference of the tangents with dvdu = 1 and dvdu = 0). */
+static void fc_check_motion(fcase *c, int regime, double cm, int damping)
 {
     const double h = 1e-6;
     ffc_link_state st;
     double R[FFC_MAXDOF], K[FFC_MAXDOF][FFC_MAXDOF];
-    assert_int_equal(fc_eval(c, &st, R, K), FFC_OK);
+    if (damping) {
+        double K0[FFC_MAXDOF][FFC_MAXDOF];
+        c->law.dvdu = 0.0;
+        assert_int_equal(fc_eval(c, &st, R, K0), FFC_OK);
+        c->law.dvdu = 1.0;
+        assert_int_equal(fc_eval(c, &st, R, K), FFC_OK);
+        for (int k = 0; k < FFC_MAXDOF; k++)
+            for (int l = 0; l < FFC_MAXDOF; l++) K[k][l] -= K0[k][l];
+    } else {
+        if (c->fx.dynamic) c->law.dvdu = cm;
+        assert_int_equal(fc_eval(c, &st, R, K), FFC_OK);
+    }
     assert_int_equal(st.fstate, regime);
     const int nd = 3 * (c->ns + c->nm);
     double err = 0, scale = 0, asym = 0;
     for (int l = 0; l < nd; l++) {
-        double *x = fc_coord(c, l), x0 = *x, Rp[FFC_MAXDOF], Rm[FFC_MAXDOF];
+        double *x = fc_coord(c, l), x0 = *x, *d = fc_motion(c, l), d0 = *d, Rp[FFC_MAXDOF], Rm[FFC_MAXDOF];
+        const double hx = damping ? 0.0 : h, hd = damping ? h : cm * h;
         ffc_link_state sp, sm;
-        *x = x0 + h; assert_int_equal(fc_eval(c, &sp, Rp, NULL), FFC_OK);
-        *x = x0 - h; assert_int_equal(fc_eval(c, &sm, Rm, NULL), FFC_OK);
-        *x = x0;
+        *x = x0 + hx; *d = d0 + hd; assert_int_equal(fc_eval(c, &sp, Rp, NULL), FFC_OK);
+        *x = x0 - hx; *d = d0 - hd; assert_int_equal(fc_eval(c, &sm, Rm, NULL), FFC_OK);
+        *x = x0; *d = d0;
         assert_int_equal(sp.fstate, regime);
         assert_int_equal(sm.fstate, regime);
         for (int k = 0; k < nd; k++) {
@@ -232,9 +256,15 @@ static void fc_check(fcase *c, int regime)
         }
     }
     if (!(err <= 1e-6 * scale))
-        fail_msg("friction tangent error %.3g of scale %.3g (ns %d nm %d finite %d regime %d)", err, scale, c->ns,
-                 c->nm, c->fx.finite_def, regime);
-    assert_true(asym > 1e-6 * scale); /* friction makes it non-symmetric */
+        fail_msg("friction %s error %.3g of scale %.3g (ns %d nm %d finite %d dynamic %d regime %d)",
+                 damping ? "damping matrix" : "tangent", err, scale, c->ns, c->nm, c->fx.finite_def, c->fx.dynamic,
+                 regime);
+    if (!c->fx.dynamic) assert_true(asym > 1e-6 * scale); /* friction makes it non-symmetric */
+}
+
+static void fc_check(fcase *c, int regime)
+{
+    fc_check_motion(c, regime, 1.0, 0);
 }
 
 static void test_link_tangent(void **state)
@@ -250,6 +280,77 @@ static void test_link_tangent(void **state)
                         fc_make(&c, ns, nm, finite, regime, &s);
                         fc_check(&c, regime);
                     }
+}
+
+/* The velocity form on one link, stick and slip, flat and curved facets:
+ * K at fixed velocities (dvdu = 0), with an integrator's dv/du = 0.7, and
+ * the damping matrix D = dR/dv. */
+static void test_link_velocity_form(void **state)
+{
+    (void)state;
+    uint64_t s = 25;
+    for (int regime = FFC_FRIC_STICK; regime <= FFC_FRIC_SLIP; regime++)
+        for (int finite = 0; finite <= 1; finite++)
+            for (int nm = 3; nm <= 6; nm += 3)
+                for (int trial = 0; trial < 2; trial++) {
+                    fcase c;
+                    fc_make(&c, 3, nm, finite, regime, &s);
+                    c.fx.dynamic = 1;
+                    c.law.dt = 0.01;
+                    fc_check_motion(&c, regime, 0.0, 0);
+                    fc_check_motion(&c, regime, 0.7, 0);
+                    fc_check_motion(&c, regime, 0.0, 1);
+                }
+}
+
+/* The velocity form with the backward-difference velocity v = (x - x^n) / dt,
+ * eps_T dt and dv/du = 1 / dt is the incremental form: the same traction,
+ * residual, slip and tangent (to round-off of the rescaling). */
+static void test_velocity_matches_incremental(void **state)
+{
+    (void)state;
+    uint64_t s = 26;
+    for (int trial = 0; trial < 8; trial++) {
+        fcase c;
+        const int regime = trial % 2 ? FFC_FRIC_SLIP : FFC_FRIC_STICK;
+        fc_make(&c, trial % 4 < 2 ? 3 : 6, 3, trial % 3 == 0, regime, &s);
+        ffc_link_state a, b;
+        double Ra[FFC_MAXDOF], Rb[FFC_MAXDOF], Ka[FFC_MAXDOF][FFC_MAXDOF], Kb[FFC_MAXDOF][FFC_MAXDOF];
+        assert_int_equal(fc_eval(&c, &a, Ra, Ka), FFC_OK);
+        const double dt = 0.05;
+        fcase d = c;
+        d.fx.dynamic = 1;
+        d.law.dt = dt;
+        d.law.dvdu = 1.0 / dt;
+        d.law.eps_t = c.law.eps_t * dt;
+        for (int k = 0; k < 6; k++)
+            for (int i = 0; i < 3; i++) { d.Ds[k][i] = c.Ds[k][i] / dt; d.Dm[k][i] = c.Dm[k][i] / dt; }
+        assert_int_equal(fc_eval(&d, &b, Rb, Kb), FFC_OK);
+        assert_int_equal(b.fstate, a.fstate);
+        assert_int_equal(a.fstate, regime);
+        const int nd = 3 * (c.ns + c.nm);
+        double rs = 0, ks = 0;
+        for (int k = 0; k < nd; k++) {
+            rs = fmax(rs, fabs(Ra[k]));
+            for (int l = 0; l < nd; l++) ks = fmax(ks, fabs(Ka[k][l]));
+        }
+        for (int k = 0; k < nd; k++) {
+            assert_close(Rb[k], Ra[k], 1e-13 * rs);
+            for (int l = 0; l < nd; l++) assert_close(Kb[k][l], Ka[k][l], 1e-13 * ks);
+        }
+        for (int i = 0; i < 3; i++) {
+            assert_close(b.slip[i], a.slip[i], 1e-15);
+            assert_close(b.t[i], a.t[i], 1e-13 * (fabs(a.t[i]) + 1e-3));
+        }
+        /* bad time data: dt <= 0, dv/du < 0, NaN */
+        d.law.dt = 0.0;
+        assert_int_equal(fc_eval(&d, &b, Rb, NULL), FFC_ERR_VALUE);
+        d.law.dt = dt;
+        d.law.dvdu = -1.0;
+        assert_int_equal(fc_eval(&d, &b, Rb, NULL), FFC_ERR_VALUE);
+        d.law.dvdu = NAN;
+        assert_int_equal(fc_eval(&d, &b, Rb, NULL), FFC_ERR_VALUE);
+    }
 }
 
 /* mu = 0 with friction on: the frictionless residual and tangent, bit for
@@ -291,7 +392,7 @@ static void test_link_mu_zero_and_balance(void **state)
 enum { NV = 41, NFM = 32, NFS = 18, NQ = 3, NL = NFS * NQ, CAP = 400000 };
 
 typedef struct {
-    double X[NV * 3], u[NV * 3], up[NV * 3];
+    double X[NV * 3], u[NV * 3], up[NV * 3], v[NV * 3];
     long Fm[NFM * 3], Fs[NFS * 3];
     ffc_link L[NL];
     double lam[NV > NL ? NV : NL], lam_t[NL * 3];
@@ -310,6 +411,7 @@ static void ascene_make(ascene *a, int nodal, uint64_t *s)
     /* press the slave down so that most points are active */
     for (int v = 25; v < NV; v++) a->u[3 * v + 2] -= 0.004;
     for (int i = 0; i < NV * 3; i++) x[i] = a->X[i] + a->u[i];
+    for (int i = 0; i < NV * 3; i++) a->v[i] = (a->u[i] - a->up[i]) / 0.01; /* velocity form: dt = 0.01 */
     ffc_tree *t;
     assert_int_equal(ffc_tree_build(3, NFM, a->Fm, NV, x, &t), FFC_OK);
     ffc_search_opts o = ffc_search_defaults();
@@ -319,39 +421,61 @@ static void ascene_make(ascene *a, int nodal, uint64_t *s)
     const long nlam = nodal ? NV : NL;
     for (long k = 0; k < nlam; k++) a->lam[k] = (nodal && k < 25) ? 0.0 : test_rand(s, 0.0, 0.3);
     for (int k = 0; k < NL * 3; k++) a->lam_t[k] = test_rand(s, -0.05, 0.05);
-    ffc_pair P = {3, NFS, a->Fs, 3, NFM, a->Fm, NV, a->X, a->u, a->up};
+    ffc_pair P = {3, NFS, a->Fs, 3, NFM, a->Fm, NV, a->X, a->u, a->up, a->v};
     a->P = P;
 }
 
-/* central differences of the assembled residual, h = 1e-7 against
- * displacements ~1e-2 (as the nodal test of test_link.c) */
-static void assembled_check(ascene *a, const ffc_effects *fx, const ffc_law *law, int regime)
+/* the assembled tangent of law, dense, added into K with the factor f */
+static void assembled_dense(ascene *a, const ffc_effects *fx, const ffc_law *law, double f, double K[][NV * 3],
+                            ffc_stats *st)
 {
     long *Ti = malloc(CAP * sizeof *Ti), *Tj = malloc(CAP * sizeof *Tj), nt, bad;
     double *Tv = malloc(CAP * sizeof *Tv);
-    static double K[NV * 3][NV * 3];
     double R[NV * 3] = {0};
-    ffc_stats st;
-    assert_int_equal(ffc_assemble(fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, law, R, CAP, Ti, Tj, Tv, &nt, &st, &bad),
+    assert_int_equal(ffc_assemble(fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, law, R, CAP, Ti, Tj, Tv, &nt, st, &bad),
                      FFC_OK);
+    for (long k = 0; k < nt; k++) K[Ti[k]][Tj[k]] += f * Tv[k];
+    free(Ti); free(Tj); free(Tv);
+}
+
+/* Central differences of the assembled residual, h = 1e-7 against
+ * displacements ~1e-2 (as the nodal test of test_link.c).  A change h of
+ * u changes the velocities by law->dvdu h in the velocity form; with
+ * damping the matrix checked is D = dR/dv (the tangent with dvdu = 1
+ * minus the one with dvdu = 0) against changes of v alone. */
+static void assembled_check_motion(ascene *a, const ffc_effects *fx, const ffc_law *law, int regime, int damping)
+{
+    static double K[NV * 3][NV * 3];
+    long nt, bad;
+    ffc_stats st;
+    memset(K, 0, sizeof K);
+    if (damping) {
+        ffc_law l0 = *law, l1 = *law;
+        l0.dvdu = 0.0;
+        l1.dvdu = 1.0;
+        assembled_dense(a, fx, &l1, 1.0, K, &st);
+        assembled_dense(a, fx, &l0, -1.0, K, &st);
+    } else
+        assembled_dense(a, fx, law, 1.0, K, &st);
     assert_true(st.active > 0);
     /* all stick or all slip (counted per link, or per node for the nodal law) */
     assert_true((regime == FFC_FRIC_STICK ? st.stick : st.slip) > 0);
     assert_int_equal(regime == FFC_FRIC_STICK ? st.slip : st.stick, 0);
-    memset(K, 0, sizeof K);
-    for (long k = 0; k < nt; k++) K[Ti[k]][Tj[k]] += Tv[k];
-    const double h = 1e-7;
+    const double h = 1e-7, hu = damping ? 0.0 : h, hv = damping ? h : fx->dynamic ? law->dvdu * h : 0.0;
     double err = 0, scale = 0;
     for (int l = 0; l < NV * 3; l++) {
-        double Rp[NV * 3] = {0}, Rm[NV * 3] = {0}, u0 = a->u[l];
+        double Rp[NV * 3] = {0}, Rm[NV * 3] = {0}, u0 = a->u[l], v0 = a->v[l];
         ffc_stats sp, sm;
-        a->u[l] = u0 + h;
+        a->u[l] = u0 + hu;
+        a->v[l] = v0 + hv;
         assert_int_equal(ffc_assemble(fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, law, Rp, 0, NULL, NULL, NULL, &nt, &sp,
                                       &bad), FFC_OK);
-        a->u[l] = u0 - h;
+        a->u[l] = u0 - hu;
+        a->v[l] = v0 - hv;
         assert_int_equal(ffc_assemble(fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, law, Rm, 0, NULL, NULL, NULL, &nt, &sm,
                                       &bad), FFC_OK);
         a->u[l] = u0;
+        a->v[l] = v0;
         assert_int_equal(sp.active, st.active);
         assert_int_equal(sm.active, st.active);
         assert_int_equal(sp.stick, st.stick);
@@ -362,9 +486,13 @@ static void assembled_check(ascene *a, const ffc_effects *fx, const ffc_law *law
         }
     }
     if (!(err <= 1e-6 * scale))
-        fail_msg("assembled friction tangent error %.3g of scale %.3g (nodal %d, stick %ld slip %ld)", err, scale,
-                 law->nodal, st.stick, st.slip);
-    free(Ti); free(Tj); free(Tv);
+        fail_msg("assembled friction %s error %.3g of scale %.3g (nodal %d, dynamic %d, stick %ld slip %ld)",
+                 damping ? "damping matrix" : "tangent", err, scale, law->nodal, fx->dynamic, st.stick, st.slip);
+}
+
+static void assembled_check(ascene *a, const ffc_effects *fx, const ffc_law *law, int regime)
+{
+    assembled_check_motion(a, fx, law, regime, 0);
 }
 
 static void test_assembled_tangent(void **state)
@@ -377,12 +505,61 @@ static void test_assembled_tangent(void **state)
             ascene_make(a, nodal, &s);
             ffc_effects fx = {1, 0, finite};
             /* all stick (a huge mu), all slip (eps_T |r| >> mu t_N) */
-            ffc_law stick = {60, nodal, 0, 1e6, 5.0};
+            ffc_law stick = {60, nodal, 0, 1e6, 5.0, 0.0, 0.0};
             assembled_check(a, &fx, &stick, FFC_FRIC_STICK);
-            ffc_law slip = {60, nodal, 0, 0.3, 2000.0};
+            ffc_law slip = {60, nodal, 0, 0.3, 2000.0, 0.0, 0.0};
             assembled_check(a, &fx, &slip, FFC_FRIC_SLIP);
             free(a);
         }
+}
+
+/* The velocity form assembled, both laws, all stick and all slip: the
+ * tangent with the integrator's dv/du = 50 (dt 0.01), and the damping
+ * matrix; with v = (u - u^n) / dt, eps_T dt and dv/du = 1 / dt the
+ * residual equals the incremental one. */
+static void test_assembled_velocity_form(void **state)
+{
+    (void)state;
+    uint64_t s = 27;
+    const double dt = 0.01;
+    for (int nodal = 0; nodal <= 1; nodal++) {
+        ascene *a = malloc(sizeof *a);
+        ascene_make(a, nodal, &s);
+        ffc_effects fx = {1, 1, 0};
+        ffc_law stick = {60, nodal, 0, 1e6, 5.0 * dt, dt, 50.0};
+        assembled_check_motion(a, &fx, &stick, FFC_FRIC_STICK, 0);
+        assembled_check_motion(a, &fx, &stick, FFC_FRIC_STICK, 1);
+        ffc_law slip = {60, nodal, 0, 0.3, 2000.0 * dt, dt, 50.0};
+        assembled_check_motion(a, &fx, &slip, FFC_FRIC_SLIP, 0);
+        assembled_check_motion(a, &fx, &slip, FFC_FRIC_SLIP, 1);
+        /* agreement with the incremental form (ascene_make: v = (u - u^n) / 0.01) */
+        ffc_effects qs = {1, 0, 0};
+        ffc_law inc = slip;
+        inc.eps_t = 2000.0;
+        slip.dvdu = 1.0 / dt;
+        double R0[NV * 3] = {0}, R1[NV * 3] = {0};
+        long nt, bad;
+        ffc_stats s0, s1;
+        assert_int_equal(ffc_assemble(&qs, &a->P, 2, NL, a->L, a->lam, a->lam_t, &inc, R0, 0, NULL, NULL, NULL, &nt, &s0, &bad), FFC_OK);
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &slip, R1, 0, NULL, NULL, NULL, &nt, &s1, &bad), FFC_OK);
+        double rs = 0;
+        for (int i = 0; i < NV * 3; i++) rs = fmax(rs, fabs(R0[i]));
+        for (int i = 0; i < NV * 3; i++) assert_close(R1[i], R0[i], 1e-12 * rs);
+        assert_close(s1.dissipation, s0.dissipation, 1e-12 * fabs(s0.dissipation));
+        assert_int_equal(s1.slip, s0.slip);
+        /* the velocity form reads v, not u_prev; a missing or NaN v and a bad dt are refused */
+        a->P.u_prev = NULL;
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &slip, R1, 0, NULL, NULL, NULL, &nt, &s1, &bad), FFC_OK);
+        a->P.v = NULL;
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &slip, R1, 0, NULL, NULL, NULL, &nt, &s1, &bad), FFC_ERR_NULL);
+        a->P.v = a->v;
+        a->v[5] = NAN;
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &slip, R1, 0, NULL, NULL, NULL, &nt, &s1, &bad), FFC_ERR_NONFINITE);
+        a->v[5] = 0.0;
+        slip.dt = -dt;
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &slip, R1, 0, NULL, NULL, NULL, &nt, &s1, &bad), FFC_ERR_VALUE);
+        free(a);
+    }
 }
 
 /* Uzawa update: lam_t becomes the traction (tangent, inside the cone);
@@ -395,7 +572,7 @@ static void test_augment(void **state)
         ascene *a = malloc(sizeof *a);
         ascene_make(a, nodal, &s);
         ffc_effects fx = {1, 0, 0};
-        ffc_law law = {60, nodal, 0, 0.3, 30.0};
+        ffc_law law = {60, nodal, 0, 0.3, 30.0, 0.0, 0.0};
         double P[NL * FFC_POINT_COLS];
         long bad;
         assert_int_equal(ffc_points(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &law, P, &bad), FFC_OK);
@@ -456,7 +633,10 @@ int main(void)
         cmocka_unit_test(test_map_derivatives),
         cmocka_unit_test(test_link_tangent),
         cmocka_unit_test(test_link_mu_zero_and_balance),
+        cmocka_unit_test(test_link_velocity_form),
+        cmocka_unit_test(test_velocity_matches_incremental),
         cmocka_unit_test(test_assembled_tangent),
+        cmocka_unit_test(test_assembled_velocity_form),
         cmocka_unit_test(test_augment),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -19,7 +19,7 @@ static void scene(double X[3 * NV], long Fm[32 * 3], long Fs[18 * 3], ffc_pair *
 {
     test_pair_scene(X, Fm, Fs);
     memset(u, 0, 3 * NV * sizeof u[0]);
-    ffc_pair q = {3, 18, Fs, 3, 32, Fm, NV, X, u, NULL};
+    ffc_pair q = {3, 18, Fs, 3, 32, Fm, NV, X, u, NULL, NULL};
     *p = q;
 }
 
@@ -185,7 +185,7 @@ static void test_transitions(void **state)
     double u[18], up[18];
     memset(u, 0, sizeof u);
     memset(up, 0, sizeof up);
-    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, up};
+    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, up, NULL};
     ffc_nts_law law = {0.5, 0.4, 1e-12, 1e-9, 20, 2.0};
     ffc_nts_node nd[3];
     long need;
@@ -345,7 +345,7 @@ static void test_chattering_guard(void **state)
     long Fm[3] = {0, 1, 2}, Fs[3] = {3, 4, 5};
     double u[18];
     memset(u, 0, sizeof u);
-    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, NULL};
+    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, NULL, NULL};
     ffc_nts_law law = {0, 0, 1e-12, 1e-9, 3, 1.0};
     ffc_nts_node nd[3];
     long need, nt, nr, Bi[64], Bj[64];
