@@ -1,14 +1,14 @@
 // blocks.geo: two stacked unit cubes with independent (non-matching) meshes
 // on their common face z = 1.  Lower block [0,1]^3, upper block
-// [0,1]^2 x [1 + gap0, 2 + gap0].
+// [xshift, 1 + xshift] x [0,1] x [1 + gap0, 2 + gap0].
 //   gmsh -3 -format msh2 -setnumber h1 0.25 -setnumber h2 0.2 blocks.geo
 SetFactory("OpenCASCADE");
-DefineConstant[ h1 = 0.25, h2 = 0.2, gap0 = 0 ];   // mesh sizes of the lower and upper block;
-                                                  // initial gap between them (< 0: overlap)
+DefineConstant[ h1 = 0.25, h2 = 0.2, gap0 = 0, xshift = 0 ];  // mesh sizes of the lower and upper block;
+                                                  // initial gap between them (< 0: overlap); shift of the upper one
 Mesh.MshFileVersion = 2.2;
 
 Box(1) = {0, 0, 0, 1, 1, 1};
-Box(2) = {0, 0, 1 + gap0, 1, 1, 1};
+Box(2) = {xshift, 0, 1 + gap0, 1, 1, 1};
 // OpenCASCADE box faces: x=min, x=max, y=min, y=max, z=min, z=max
 // Per-body sizes through restricted fields: point sizes would be shared by
 // the coincident corners of the two boxes and make the interface match.
