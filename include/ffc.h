@@ -26,7 +26,8 @@ enum {
     FFC_ERR_LABEL = -11,          /* a label that no boundary face carries */
     FFC_ERR_VALUE = -12,          /* a parameter outside its admissible range */
     FFC_ERR_MEMORY = -13,         /* allocation failed */
-    FFC_ERR_INVERTED = -14        /* a facet turned inside out (normal reversed) */
+    FFC_ERR_INVERTED = -14,       /* a facet turned inside out (normal reversed) */
+    FFC_ERR_SINGULAR = -15        /* a linear system is singular (zero pivot) */
 };
 
 /* Human-readable text of a status code (static string, never NULL). */
@@ -592,6 +593,62 @@ long ffc_nts_nrows(long nn, const ffc_nts_node nodes[]);
  * FFC_ERR_VALUE (area <= 0) with *bad = the node row at fault. */
 int ffc_nts_points(long nv, const double X[], const double u[], long nn, const ffc_nts_node nodes[],
                    double P[], long *bad);
+
+/* ------------------------------------------- contact-reduced linear solve */
+/* Formulation.  In a small-strain quasi-static scene the bulk stiffness K
+ * (n x n, symmetric, Dirichlet rows included) does not change: it is
+ * factorized once, and the contact tangent Kc, which touches only the m
+ * contact dofs C (Kc = P Kcc P^T, P the n x m selection), is handled on
+ * those dofs.  With G = P^T K^-1 P (m x m, the compliance of the contact
+ * dofs; column j is K^-1 e_dof[j] at the contact dofs, one back-solve) and
+ * y = K^-1 b:
+ *     (K + P Kcc P^T) x = b   <=>   (I + G Kcc) x_C = y_C,
+ *                                   x = y - K^-1 P (Kcc x_C),
+ * so a Newton iteration costs two back-solves with K and one dense m x m
+ * solve instead of a factorization of K + Kc.  G only grows: a dof that
+ * Kc touches for the first time adds one column (and, K being symmetric,
+ * the same row).  Kcc may be non-symmetric (friction).  A body held only
+ * by contact makes K singular: then K + S is factorized instead, S = diag(sh)
+ * non-zero only on contact dofs, and Kcc - S_CC takes Kcc's place (exact:
+ * K + Kc = (K + S) + P (Kcc - S_CC) P^T). */
+
+/* The dofs that the triplets (Ti, Tj, Tv)[nt] of an n x n matrix touch
+ * with a non-zero value (row or column) and that are not among dof[m]:
+ * written to out[cap] in ascending order, *nout their count (or the count
+ * needed, with FFC_ERR_CAPACITY).  pos[n] is work space (on return all -1).
+ * FFC_ERR_INDEX when an index is outside [0, n). */
+int ffc_reduced_missing(long n, long m, const long dof[], long nt, const long Ti[], const long Tj[],
+                        const double Tv[], long cap, long out[], long *nout, long pos[]);
+
+/* Appends the dof j to dof[m] (capacity ld) and the column x[n] = K^-1 e_j
+ * to G (column-major, leading dimension ld): G(i, m) = G(m, i) = x[dof[i]]
+ * for i < m, G(m, m) = x[j].  FFC_ERR_CAPACITY when m >= ld, FFC_ERR_INDEX
+ * for j outside [0, n) or already in dof[], FFC_ERR_NONFINITE for a
+ * non-finite x at the contact dofs. */
+int ffc_reduced_add(long n, long ld, long m, long dof[], double G[], const double x[], long j);
+
+/* Solves (I + G Kcc') x_C = y_C with Kcc' = Kcc - diag(sh) at the contact
+ * dofs (sh[n] may be NULL: no shift), Kcc from the triplets (Ti, Tj,
+ * Tv)[nt] (global dofs, each in dof[m]), and writes w[n] = P (Kcc' x_C)
+ * (zero off the contact dofs); xc[m] receives x_C.  Work: A[m*m], piv[m],
+ * pos[n] (on return all -1).  FFC_ERR_INDEX when a triplet or a non-zero
+ * shift touches a dof outside dof[] (call ffc_reduced_missing / _add
+ * first), FFC_ERR_SINGULAR on a zero pivot, FFC_ERR_NONFINITE for
+ * non-finite input. */
+int ffc_reduced_solve(long n, long ld, long m, const long dof[], const double G[], long nt, const long Ti[],
+                      const long Tj[], const double Tv[], const double sh[], const double y[], double xc[],
+                      double w[], double A[], long piv[], long pos[]);
+
+/* -------------------------------------------------------- sparse triplets */
+/* Sums the duplicates of the triplets (Ti, Tj, Tv)[nt] of an n x n matrix
+ * into (Ci, Cj, Cv) (capacity nt: the sum never has more), grouped by row
+ * in ascending order, columns within a row in order of first appearance;
+ * returns the number of distinct entries.  Work: rp[n + 1], w[n].  The
+ * contact tangent of the nodal law repeats entries about 12 times (Hertz):
+ * summing them here hands FreeFEM a matrix, not a list to hash.
+ * FFC_ERR_INDEX for an index outside [0, n). */
+long ffc_triplets_sum(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long Ci[],
+                      long Cj[], double Cv[], long rp[], long w[]);
 
 /* ------------------------------------------------- quadratic tetrahedra */
 /* Numbers the nodes of P2 tetrahedra T[nt*4] (nv vertices) as FreeFEM

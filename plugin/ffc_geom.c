@@ -25,6 +25,7 @@ const char *ffc_strerror(int status)
     case FFC_ERR_VALUE: return "parameter outside its admissible range";
     case FFC_ERR_MEMORY: return "out of memory";
     case FFC_ERR_INVERTED: return "inverted element (signed volume reversed or zero)";
+    case FFC_ERR_SINGULAR: return "singular linear system (zero pivot)";
     default: return "unknown status";
     }
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "ffc.h"
+#include <memory>
 
 using namespace Fem2D;
 
@@ -791,22 +792,30 @@ long assemble(const char *fn, pmesh3 pTh, KN<double> *u, KN<double> *up, KN<long
     for (long k = 0; k < c.nl; k++)
         if (c.links[k].mf >= 0 && (c.links[k].gap < 0 || (o.law.nodal ? true : (*lam)[k] > 0))) guess++;
     long cap = (guess + 16) * nd2 * (o.fx.friction ? 2 : 1);
-    std::vector<long> Ti, Tj;
-    std::vector<double> Tv;
+    // triplet buffers, not zero-filled (the kernel writes what it counts)
+    std::unique_ptr<long[]> Ti, Tj;
+    std::unique_ptr<double[]> Tv;
     for (int attempt = 0; attempt < 2; attempt++) {
-        Ti.resize(cap); Tj.resize(cap); Tv.resize(cap);
+        Ti.reset(new long[cap]); Tj.reset(new long[cap]); Tv.reset(new double[cap]);
         std::fill(Rc.begin(), Rc.end(), 0.0);
         rc = ffc_assemble(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], c.lam_t, &o.law, Rc.data(),
-                          cap, Ti.data(), Tj.data(), Tv.data(), &nt, &st, &bad);
+                          cap, Ti.get(), Tj.get(), Tv.get(), &nt, &st, &bad);
         if (rc != FFC_ERR_CAPACITY) break;
         cap = nt;
     }
     if (rc) link_error(fn, rc, bad);
     for (long i = 0; i < n; i++) (*R)[i] += Rc[i];
-    // symmetric storage keeps the lower triangle, as FreeFEM's half matrices do
-    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, (int)std::min(nt, 1L << 30), o.lower ? 1 : 0);
-    for (long t = 0; t < nt; t++)
-        if (!o.lower || Ti[t] >= Tj[t]) (*h)((int)Ti[t], (int)Tj[t]) += Tv[t];
+    // duplicates summed in C (the nodal law repeats entries many times), then
+    // handed over; symmetric storage keeps the lower triangle, as FreeFEM's
+    // half matrices do
+    std::unique_ptr<long[]> Ci(new long[nt > 0 ? nt : 1]), Cj(new long[nt > 0 ? nt : 1]), rp(new long[n + 1]),
+        wk(new long[n]);
+    std::unique_ptr<double[]> Cv(new double[nt > 0 ? nt : 1]);
+    const long nz = ffc_triplets_sum(n, nt, Ti.get(), Tj.get(), Tv.get(), Ci.get(), Cj.get(), Cv.get(), rp.get(), wk.get());
+    if (nz < 0) link_error(fn, (int)nz, -1);
+    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, (int)std::min(nz, 1L << 30), o.lower ? 1 : 0);
+    for (long t = 0; t < nz; t++)
+        if (!o.lower || Ci[t] >= Cj[t]) (*h)((int)Ci[t], (int)Cj[t]) += Cv[t];
     K->A.master(h);
     K->typemat = 0;
     return st.active;
@@ -1285,6 +1294,154 @@ double ffcTime()
 
 } // namespace
 
+// ---------------------------------------------------------------------------
+// Contact-reduced linear solve (ffc_reduced_*): the compliance G of the
+// contact dofs rdof (real[int] of ld x ld, column-major, ld = sqrt(G.n)),
+// grown column by column, and the dense system that replaces a
+// factorization of K + Kc in a small-strain scene.
+
+// The triplets of a square FreeFEM matrix (a half-stored one expanded).
+long matrix_triplets(const char *fn, const char *arg, Matrice_Creuse<double> *K, std::vector<long> &Ti,
+                     std::vector<long> &Tj, std::vector<double> &Tv)
+{
+    if (!K || !K->A) fail(fn, std::string("argument '") + arg + "': matrix is not defined");
+    HashMatrix<int, double> *h = dynamic_cast<HashMatrix<int, double> *>((MatriceCreuse<double> *)K->A);
+    if (!h) fail(fn, std::string("argument '") + arg + "': not a sparse matrix");
+    if (h->n != h->m) {
+        std::ostringstream s;
+        s << "argument '" << arg << "': " << h->n << " x " << h->m << " matrix, expected a square one";
+        fail(fn, s.str());
+    }
+    const size_t nz = h->nnz;
+    Ti.clear(); Tj.clear(); Tv.clear();
+    for (size_t k = 0; k < nz; k++) {
+        Ti.push_back(h->i[k]); Tj.push_back(h->j[k]); Tv.push_back(h->aij[k]);
+        if (h->half && h->i[k] != h->j[k]) { Ti.push_back(h->j[k]); Tj.push_back(h->i[k]); Tv.push_back(h->aij[k]); }
+    }
+    return h->n;
+}
+
+// The leading dimension of G (argument 'G': ld x ld entries).
+long reduced_ld(const char *fn, KN<double> *G, long m)
+{
+    if (!G) fail(fn, "argument 'G': array is not defined");
+    const long ld = (long)std::llround(std::sqrt((double)G->N()));
+    if (ld * ld != G->N() || ld < m) {
+        std::ostringstream s;
+        s << "argument 'G': size " << G->N() << " is not ld x ld with ld >= " << m << " (the contact dofs in 'rdof')";
+        fail(fn, s.str());
+    }
+    return ld;
+}
+
+void reduced_error(const char *fn, int st, const char *what)
+{
+    std::ostringstream s;
+    s << ffc_strerror(st) << " (" << what << ")";
+    fail(fn, s.str());
+}
+
+// ffcReducedMissing(Kc, rdof, out): the dofs the matrix Kc touches that
+// are not in rdof, into out (resized); returns their count.
+long ffcReducedMissing(Matrice_Creuse<double> *const &Kc, KN<long> *const &rdof, KN<long> *const &out)
+{
+    const char *fn = "ffcReducedMissing";
+    std::vector<long> Ti, Tj;
+    std::vector<double> Tv;
+    const long n = matrix_triplets(fn, "Kc", Kc, Ti, Tj, Tv);
+    if (!rdof) fail(fn, "argument 'rdof': array is not defined");
+    if (!out) fail(fn, "argument 'out': array is not defined");
+    const long m = rdof->N();
+    std::vector<long> d(m > 0 ? m : 1), o(n), pos(n);
+    for (long k = 0; k < m; k++) d[k] = (*rdof)[k];
+    long nout = 0;
+    int st = ffc_reduced_missing(n, m, d.data(), (long)Ti.size(), Ti.data(), Tj.data(), Tv.data(), n, o.data(), &nout,
+                                 pos.data());
+    if (st) reduced_error(fn, st, "argument 'rdof': a dof outside the matrix");
+    out->resize(nout);
+    for (long k = 0; k < nout; k++) (*out)[k] = o[k];
+    return nout;
+}
+
+// ffcReducedAdd(G, rdof, x, j): appends dof j and the column x = K^-1 e_j
+// (size n) to rdof and G (G grows, keeping its contents); returns the
+// number of contact dofs.
+long ffcReducedAdd(KN<double> *const &G, KN<long> *const &rdof, KN<double> *const &x, long const &j)
+{
+    const char *fn = "ffcReducedAdd";
+    if (!rdof) fail(fn, "argument 'rdof': array is not defined");
+    if (!x) fail(fn, "argument 'x': array is not defined");
+    const long m = rdof->N(), n = x->N();
+    long ld = reduced_ld(fn, G, m);
+    if (j < 0 || j >= n) {
+        std::ostringstream s;
+        s << "argument 'j': dof " << j << " outside the " << n << " entries of 'x'";
+        fail(fn, s.str());
+    }
+    if (m >= ld) {   // grow: double the leading dimension, keep G
+        const long ld2 = std::max(2 * ld, 64L);
+        std::vector<double> g(ld2 * ld2, 0.0);
+        for (long c = 0; c < m; c++)
+            for (long r = 0; r < m; r++) g[r + c * ld2] = (*G)[r + c * ld];
+        G->resize(ld2 * ld2);
+        for (long k = 0; k < ld2 * ld2; k++) (*G)[k] = g[k];
+        ld = ld2;
+    }
+    std::vector<long> d(m + 1);
+    for (long k = 0; k < m; k++) d[k] = (*rdof)[k];
+    int st = ffc_reduced_add(n, ld, m, d.data(), &(*G)[0], &(*x)[0], j);
+    if (st) {
+        std::ostringstream s;
+        s << "argument 'j' = " << j << " or 'rdof'/'x'";
+        reduced_error(fn, st, s.str().c_str());
+    }
+    rdof->resize(m + 1);
+    (*rdof)[m] = j;
+    return m + 1;
+}
+
+// ffcReducedSolve(G, rdof, Kc, sh, y, w): with y = Ks^-1 b, Ks = K +
+// diag(sh) (sh: size n, non-zero only on contact dofs; or size 0 for no
+// shift), solves (I + G Kcc') x_C = y_C, Kcc' = Kcc - diag(sh), and sets
+// w = P Kcc' x_C (size n); the solution of (K + Kc) x = b is then
+// y - Ks^-1 w.  Returns the number of contact dofs.
+long ffcReducedSolve(KN<double> *const &G, KN<long> *const &rdof, Matrice_Creuse<double> *const &Kc,
+                     KN<double> *const &sh, KN<double> *const &y, KN<double> *const &w)
+{
+    const char *fn = "ffcReducedSolve";
+    std::vector<long> Ti, Tj;
+    std::vector<double> Tv;
+    const long n = matrix_triplets(fn, "Kc", Kc, Ti, Tj, Tv);
+    if (!rdof) fail(fn, "argument 'rdof': array is not defined");
+    const long m = rdof->N(), ld = reduced_ld(fn, G, m);
+    if (!y) fail(fn, "argument 'y': array is not defined");
+    if (y->N() != n) {
+        std::ostringstream s;
+        s << "argument 'y': size " << y->N() << ", expected " << n << " (the size of 'Kc')";
+        fail(fn, s.str());
+    }
+    if (!w) fail(fn, "argument 'w': array is not defined");
+    need_finite(fn, "y", y);
+    if (!sh) fail(fn, "argument 'sh': array is not defined");
+    if (sh->N() != 0 && sh->N() != n) {
+        std::ostringstream s;
+        s << "argument 'sh': size " << sh->N() << ", expected " << n << " (the size of 'Kc') or 0 (no shift)";
+        fail(fn, s.str());
+    }
+    std::vector<long> d(m > 0 ? m : 1), piv(m > 0 ? m : 1), pos(n);
+    for (long k = 0; k < m; k++) d[k] = (*rdof)[k];
+    std::vector<double> xc(m > 0 ? m : 1), A(m > 0 ? m * m : 1), wv(n);
+    int st = ffc_reduced_solve(n, ld, m, d.data(), m > 0 ? &(*G)[0] : nullptr, (long)Ti.size(), Ti.data(), Tj.data(),
+                               Tv.data(), sh->N() ? &(*sh)[0] : nullptr, &(*y)[0], xc.data(), wv.data(), A.data(),
+                               piv.data(), pos.data());
+    if (st == FFC_ERR_INDEX)
+        reduced_error(fn, st, "argument 'Kc' or 'sh' touches a dof not in 'rdof': call ffcReducedMissing and ffcReducedAdd first");
+    if (st) reduced_error(fn, st, "the reduced contact system");
+    w->resize(n);
+    for (long k = 0; k < n; k++) (*w)[k] = wv[k];
+    return m;
+}
+
 static void init()
 {
     Global.Add("ffcSurface", "(",
@@ -1329,6 +1486,9 @@ static void init()
     Global.Add("ffcNTSRows", "(", new OneOperatorN<long, pmesh3, V, V, KN<long> *, T, V, V, M, M, V>(ffcNTSRows));
     Global.Add("ffcNTSUpdate", "(", new OneOperatorN<long, pmesh3, V, V, KN<long> *, T, V, V, V>(ffcNTSUpdate));
     Global.Add("ffcNTSPoints", "(", new OneOperatorN<long, pmesh3, V, T, T>(ffcNTSPoints));
+    Global.Add("ffcReducedMissing", "(", new OneOperator3_<long, M, KN<long> *, KN<long> *>(ffcReducedMissing));
+    Global.Add("ffcReducedAdd", "(", new OneOperator4_<long, V, KN<long> *, V, long>(ffcReducedAdd));
+    Global.Add("ffcReducedSolve", "(", new OneOperatorN<long, V, KN<long> *, M, V, V, V>(ffcReducedSolve));
     Global.Add("ffcSaveVTK", "(", new OneOperator2_<long, string *, KNM<double> *>(ffcSaveVTK));
     Global.Add("ffcWriteColumns", "(",
                new OneOperator4_<long, string *, string *, KNM<double> *, KN<double> *>(ffcWriteColumns));

@@ -9,8 +9,13 @@
 #   results/study-time.png         where the time goes at each mesh level
 # Runs longer than 30 s are timed once (column reps).  Knob "method": the
 # node-to-surface Lagrange-multiplier method (-method nts) at each mesh level.
-# Knob "solver": the sparse direct solver at h_c = 0.025 (auto = CHOLMOD for
-# this symmetric scene; UMFPACK; MUMPS).
+# Knob "solver": the linear solver at h_c = 0.025 (auto = CHOLMOD for this
+# symmetric scene; UMFPACK; MUMPS; reduced = the bulk matrix factorized once,
+# contact on the reduced system of its dofs).
+# Friction: the sliding block and Cattaneo-Mindlin with the direct path
+# (auto: UMFPACK, one factorization per Newton system) and the reduced one:
+#   results/study-friction.csv     one row per run (error, iterations, time split)
+#   results/study-friction.png     wall time of both paths
 # Usage: sh scripts/study.sh [quick | plots]   (plots: redraw from results/study.csv)
 cd "$(dirname "$0")/.." || exit 2
 mode=${1:-full}
@@ -88,8 +93,37 @@ else
     for h in 0.1 0.05 0.025 0.0125; do run method "nts-hc$h" -hc $h -method nts; done
     run solver solver-UMFPACK -hc 0.025 -solver UMFPACK
     run solver solver-MUMPS -DMUMPS=1 -hc 0.025 -solver MUMPS
+    run solver solver-reduced -hc 0.025 -solver reduced
+    run solver solver-reduced-hc0.0125 -hc 0.0125 -solver reduced
     run solver solver-UMFPACK-p2 -hc 0.05 -DQUADRATIC=1 -solver UMFPACK
+    run solver solver-reduced-p2 -hc 0.05 -DQUADRATIC=1 -solver reduced
 fi
+
+# friction: both solver paths on the sliding block and Cattaneo-Mindlin
+fcsv=results/study-friction.csv
+echo "case,label,h,solver,converged,error_name,error,newton,uzawa,factorizations,reduced_dofs,t_total,t_search,t_contact,t_bulk,t_solve,reps" > "$fcsv"
+frun() {   # frun <case> <label> <h> <error field (max over the file)> <args...>
+    case_=$1; label=$2; h=$3; ef=$4; shift 4
+    out=results/study/$label
+    times=""; n=0; rc=0
+    for r in $(seq 1 $reps); do
+        sh scripts/ff scripts/$case_.edp "$@" -out "$out" > "$out.log" 2>&1; rc=$?
+        t=$(val "$out.json" total); times="$times $t"; n=$((n + 1))
+        awk -v t="$t" 'BEGIN {exit !(t > 30)}' && break
+    done
+    j=$out.json
+    tmed=$(echo $times | tr ' ' '\n' | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}')
+    err=$(sed -n "s/.*\"$ef\": \([^,}]*\).*/\1/p" "$j" | sort -g | tail -1)
+    solver=$(val "$j" solver | tr -d '"')
+    last() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" | tail -1; }   # the run's total, after per-level entries
+    echo "$case_,$label,$h,$solver,$([ $rc = 0 ] && echo 1 || echo 0),$ef,$err,$(last $j newton_iterations),$(last $j uzawa_iterations),$(val $j factorizations),$(val $j reduced_dofs),$tmed,$(tval $j search),$(tval $j contact_assembly),$(tval $j bulk_assembly),$(tval $j linear_solves),$n" >> "$fcsv"
+    echo "  $label: wall=$tmed s"
+}
+for sv in auto reduced; do
+    frun sliding-block "sb-$sv" 0.15 err_plateau -solver $sv
+    frun cattaneo-mindlin "cm-hc0.1-$sv" 0.1 err_c_over_h -hc 0.1 -solver $sv
+    [ "$mode" = quick ] || frun cattaneo-mindlin "cm-hc0.05-$sv" 0.05 err_c_over_h -hc 0.05 -solver $sv
+done
 
 fi
 
@@ -139,4 +173,22 @@ set xtics rotate by -20
 plot 'results/study-mesh.dat' using 3:xtic(1) title 'linear solves', '' using 4 title 'bulk assembly', \
      '' using 5 title 'contact assembly', '' using 6 title 'search', '' using 7 title 'other (script, output)'
 GP
-echo "wrote $csv, results/study-pareto.png, results/study-eps.png, results/study-time.png"
+# friction: wall time of the two solver paths per case
+awk -F, 'NR > 1 {k = $2; sub(/-(auto|reduced)$/, "", k); t[k, $4] = $12; if (!(k in seen)) {seen[k] = 1; order[++n] = k}}
+    END {for (i = 1; i <= n; i++) print order[i], t[order[i], "auto"], t[order[i], "reduced"]}' results/study-friction.csv \
+    > results/study-friction.dat
+gnuplot <<'GP'
+set terminal pngcairo size 760,480
+set output 'results/study-friction.png'
+set style data histograms
+set style histogram clustered gap 1
+set style fill solid 0.8 border -1
+set logscale y
+set grid y
+set ylabel 'wall time (s, median)'
+set title 'Friction cases: wall time of the two solver paths'
+set key top left
+set yrange [1:*]
+plot 'results/study-friction.dat' using 2:xtic(1) title 'direct (UMFPACK)', '' using 3 title 'reduced (CHOLMOD once)'
+GP
+echo "wrote $csv, results/study-pareto.png, results/study-eps.png, results/study-time.png, results/study-friction.csv, results/study-friction.png"
