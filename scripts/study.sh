@@ -16,7 +16,8 @@
 # (auto: UMFPACK, one factorization per Newton system) and the reduced one:
 #   results/study-friction.csv     one row per run (error, iterations, time split)
 #   results/study-friction.png     wall time of both paths
-# Usage: sh scripts/study.sh [quick | plots]   (plots: redraw from results/study.csv)
+# Usage: sh scripts/study.sh [quick | plots | friction]   (plots: redraw from
+# results/study.csv; friction: only the friction cases, then all plots)
 cd "$(dirname "$0")/.." || exit 2
 mode=${1:-full}
 mkdir -p results/study
@@ -24,7 +25,7 @@ csv=results/study.csv
 reps=3
 [ "$mode" = quick ] && reps=1
 
-if [ "$mode" != plots ]; then
+if [ "$mode" != plots ] && [ "$mode" != friction ]; then
 # reference: the finest quadratic solution of the same finite bodies
 refjson=results/study/reference.json
 if [ ! -f "$refjson" ] || [ "$mode" != quick ]; then
@@ -98,16 +99,21 @@ else
     run solver solver-UMFPACK-p2 -hc 0.05 -DQUADRATIC=1 -solver UMFPACK
     run solver solver-reduced-p2 -hc 0.05 -DQUADRATIC=1 -solver reduced
 fi
+fi
 
-# friction: both solver paths on the sliding block and Cattaneo-Mindlin
+if [ "$mode" != plots ]; then
+val() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" | head -1; }
+tval() { grep '"time"' "$1" | sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" | head -1; }
+# friction: both solver paths on the sliding block and Cattaneo-Mindlin, and
+# the sliding block's knobs (increments per ramp, tangential penalty)
 fcsv=results/study-friction.csv
-echo "case,label,h,solver,converged,error_name,error,newton,uzawa,factorizations,reduced_dofs,t_total,t_search,t_contact,t_bulk,t_solve,reps" > "$fcsv"
+echo "case,label,h,solver,converged,error_name,error,newton,uzawa,factorizations,reduced_dofs,t_total,t_search,t_contact,t_bulk,t_solve,reps,peak_mb,args" > "$fcsv"
 frun() {   # frun <case> <label> <h> <error field (max over the file)> <args...>
     case_=$1; label=$2; h=$3; ef=$4; shift 4
     out=results/study/$label
     times=""; n=0; rc=0
     for r in $(seq 1 $reps); do
-        sh scripts/ff scripts/$case_.edp "$@" -out "$out" > "$out.log" 2>&1; rc=$?
+        /usr/bin/time -f "%M" -o "$out.mem" sh scripts/ff scripts/$case_.edp "$@" -out "$out" > "$out.log" 2>&1; rc=$?
         t=$(val "$out.json" total); times="$times $t"; n=$((n + 1))
         awk -v t="$t" 'BEGIN {exit !(t > 30)}' && break
     done
@@ -116,7 +122,7 @@ frun() {   # frun <case> <label> <h> <error field (max over the file)> <args...>
     err=$(sed -n "s/.*\"$ef\": \([^,}]*\).*/\1/p" "$j" | sort -g | tail -1)
     solver=$(val "$j" solver | tr -d '"')
     last() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" | tail -1; }   # the run's total, after per-level entries
-    echo "$case_,$label,$h,$solver,$([ $rc = 0 ] && echo 1 || echo 0),$ef,$err,$(last $j newton_iterations),$(last $j uzawa_iterations),$(val $j factorizations),$(val $j reduced_dofs),$tmed,$(tval $j search),$(tval $j contact_assembly),$(tval $j bulk_assembly),$(tval $j linear_solves),$n" >> "$fcsv"
+    echo "$case_,$label,$h,$solver,$([ $rc = 0 ] && echo 1 || echo 0),$ef,$err,$(last $j newton_iterations),$(last $j uzawa_iterations),$(val $j factorizations),$(val $j reduced_dofs),$tmed,$(tval $j search),$(tval $j contact_assembly),$(tval $j bulk_assembly),$(tval $j linear_solves),$n,$(tail -1 "$out.mem" | awk '{printf "%.1f", $1 / 1024}'),$*" >> "$fcsv"
     echo "  $label: wall=$tmed s"
 }
 for sv in auto reduced; do
@@ -124,7 +130,11 @@ for sv in auto reduced; do
     frun cattaneo-mindlin "cm-hc0.1-$sv" 0.1 err_c_over_h -hc 0.1 -solver $sv
     [ "$mode" = quick ] || frun cattaneo-mindlin "cm-hc0.05-$sv" 0.05 err_c_over_h -hc 0.05 -solver $sv
 done
-
+if [ "$mode" != quick ]; then
+    for n in 8 32; do frun sliding-block "sb-n$n" 0.15 err_plateau -n $n; done
+    # the tangential penalty, absolute (the automatic one is epsN = 5.49e5)
+    for e in 5.49e4 5.49e6; do frun sliding-block "sb-epst$e" 0.15 err_plateau -epst $e; done
+fi
 fi
 
 # Pareto front of (wall time, error on p_max) over converged runs
@@ -174,7 +184,7 @@ plot 'results/study-mesh.dat' using 3:xtic(1) title 'linear solves', '' using 4 
      '' using 5 title 'contact assembly', '' using 6 title 'search', '' using 7 title 'other (script, output)'
 GP
 # friction: wall time of the two solver paths per case
-awk -F, 'NR > 1 {k = $2; sub(/-(auto|reduced)$/, "", k); t[k, $4] = $12; if (!(k in seen)) {seen[k] = 1; order[++n] = k}}
+awk -F, 'NR > 1 && $2 ~ /-(auto|reduced)$/ {k = $2; sub(/-(auto|reduced)$/, "", k); t[k, $4] = $12; if (!(k in seen)) {seen[k] = 1; order[++n] = k}}
     END {for (i = 1; i <= n; i++) print order[i], t[order[i], "auto"], t[order[i], "reduced"]}' results/study-friction.csv \
     > results/study-friction.dat
 gnuplot <<'GP'
