@@ -476,25 +476,25 @@ int ffc_write_columns(const char *path, const char *header, long n, int ncol,
  *   stick:  the slide row and t_i^T D u = t_i^T D u^n, i = 1, 2  (no
  *           tangential motion over the master since the last converged
  *           step u^n; t_1, t_2 an orthonormal tangent basis of n)
- *   slide with friction: the slide row and e^T D u = e^T D u^n, e = n x d
+ *   slide with friction: the slide row and two sliding rows, Coulomb's
+ *           law linearized at the last iterate (see ffc_nts_rows)
  *   open:   none.
- * The saddle-point system  [K  Bf^T; B  0] [u; m] = [f; c]  gives the
+ * The saddle-point system  [K  Bf^T; B  C] [u; m] = [f; c]  gives the
  * multipliers m; the contact force on the slave node is -(Bf^T m) at its
- * dofs: F = -m_n n - m_1 t_1 - m_2 t_2 in stick, and in slide
- * F = -m_n (n - nu_d d) (Bf's row is (n - nu_d d)^T D: a sliding node
- * carries the friction force nu_d F_n against its sliding direction d,
- * with F_n = -m_n); all scaled by law->scale.  B = Bf without friction
- * (symmetric system).
+ * dofs: F = -m_n n - m_1 t_1 - m_2 t_2 with friction (stick or slide),
+ * F = -m_n n without; all scaled by law->scale.  Bf = B and C = 0 except
+ * on sliding rows with friction, whose B holds M t_a (the slip's part)
+ * and C the multipliers' part of the linearized law.
  * Transitions (ffc_nts_update): open -> contact when g < -gtol (stick if
  * nu_s > 0 and the node has not moved tangentially since u^n, else slide
  * along that motion); contact -> open when F_n < -ftol max F_n
  * (tension release); stick -> slide when |F_t| > nu_s F_n (d = -F_t/|F_t|);
- * slide -> stick when |q| <= nu_d F_n or q . d <= 0, with q = -F_t + c s,
- * s the tangential slip since the last converged step, c = law->scale;
- * else d = q / |q| (a primal-dual active-set rule: noise in s does not
- * flip the state).  A sliding node with friction has a second row, no
- * motion across d (e = n x d); its multiplier, the lateral friction, is
- * part of F_t and turns d from one update to the next.  Chattering guard: once a node has changed state
+ * slide -> stick when |q| <= nu_d F_n, with q = -F_t + c s, s the
+ * tangential slip since the last converged step, c = law->scale (the
+ * projection form of Coulomb's law: a primal-dual active-set rule, noise
+ * in s does not flip the state); else the node slides along d = q / |q|.
+ * With the sliding rows' Newton linearization the active-set loop is a
+ * semi-smooth Newton method.  Chattering guard: once a node has changed state
  * max_flips times in one load step, each update makes one change only,
  * at the first node in order that asks for one (the least-index rule,
  * which terminates for frictionless contact, a P-matrix complementarity
@@ -527,7 +527,7 @@ typedef struct {
     double gap;        /* g (length) */
     double slip[3];    /* tangential motion over the master since u^n (length) */
     long row;          /* first constraint row, -1 for none */
-    int rmask;         /* rows present: bit 0 normal, bits 1, 2 tangents (stick) */
+    int rmask;         /* rows present: bit 0 normal, bits 1, 2 tangents (friction) */
     double nr[3];      /* normal the rows were built with (1) */
     double f[3];       /* contact force on the slave node (force) */
     double fn;         /* its normal part n_r . f, > 0 compressive (force) */
@@ -548,6 +548,8 @@ typedef struct {
     double max_ratio;  /* largest |F_t| / F_n over contact nodes (1) */
     double max_gap_err; /* largest |g| over nodes that had rows and stay in contact:
                           the geometric error of the linearized rows (length) */
+    double max_slide_res; /* largest |F_t + nu_d F_n d| over nodes that slide on,
+                          divided by the largest F_n: Coulomb's law's residual (1) */
 } ffc_nts_stats;
 
 /* The distinct nodes of the slave facets of pair (3-node facets), in
@@ -566,7 +568,8 @@ int ffc_nts_locate(const ffc_pair *pair, const ffc_nts_law *law, const ffc_searc
 
 /* Constraint rows of the contact nodes (geometry of the last locate), as
  * triplets (Bi, Bj) with values Bv (B) and Fv (Bf), and right-hand side
- * c[]; entries on dofs with fixed[dof] != 0 (Dirichlet; fixed may be
+ * c[]; a column Bj >= 3 nv is column Bj - 3 nv of the multiplier block C
+ * (value in Bv, Fv = 0: sliding rows with friction); entries on dofs with fixed[dof] != 0 (Dirichlet; fixed may be
  * NULL) are moved to c with the value in pair->u, and a row left empty
  * is dropped.  cap: capacity of the triplet arrays, ccap of c.
  * Writes *ntrip and *nrows (or the sizes needed with FFC_ERR_CAPACITY)

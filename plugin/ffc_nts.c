@@ -185,38 +185,53 @@ static void tangent_basis(const double n[3], double t1[3], double t2[3])
     ffc__cross(n, t1, t2);
 }
 
-/* Directions of a node's rows: v[r] the constraint direction, w[r] the
- * force direction; returns the number of rows: 3 stick (n, t1, t2);
- * slide with friction 2: n with the force direction n - nu_d d (the
- * friction nu_d F_n against the sliding direction d), and the lateral
- * direction e = n x d (no motion across d: its multiplier is the lateral
- * friction the update turns d with); frictionless slide 1 (n). */
-static int row_dirs(const ffc_nts_law *law, const ffc_nts_node *d, const double n[3],
-                    double v[3][3], double w[3][3])
+/* Force directions w[r] of a node's rows (the columns of Bf): n, t1, t2
+ * for a node in contact with friction (stick or slide), n alone without
+ * friction; returns the number of rows. */
+static int force_dirs(const ffc_nts_law *law, const ffc_nts_node *d, const double n[3], double w[3][3])
 {
-    memcpy(v[0], n, sizeof v[0]);
     memcpy(w[0], n, sizeof w[0]);
-    if (d->state == FFC_NTS_STICK) {
-        tangent_basis(n, v[1], v[2]);
-        memcpy(w[1], v[1], sizeof w[1]);
-        memcpy(w[2], v[2], sizeof w[2]);
-        return 3;
-    }
-    if (d->state != FFC_NTS_SLIDE || !(law->nu_d > 0)) return 1;
-    /* the sliding direction in the tangent plane of n */
-    double t[3];
-    const double dn = ffc__dot(d->dir, n);
-    for (int i = 0; i < 3; i++) t[i] = d->dir[i] - dn * n[i];
-    const double l = sqrt(ffc__dot(t, t));
-    if (!(l > 1e-8)) return 1;
-    for (int i = 0; i < 3; i++) {
-        t[i] /= l;
-        w[0][i] -= law->nu_d * t[i];
-    }
-    ffc__cross(n, t, v[1]);
-    memcpy(w[1], v[1], sizeof w[1]);
-    return 2;
+    if (d->state == FFC_NTS_OPEN) return 0;
+    if (d->state == FFC_NTS_SLIDE && !(law->nu_d > 0)) return 1;
+    tangent_basis(n, w[1], w[2]);
+    return 3;
 }
+
+/* The sliding rows' point of linearization: p = m_t + s (length), the
+ * tangential multiplier m_t = -F_t / scale of the last solve plus the slip
+ * s since u^n, both in the tangent plane of n; mt = m_t, mu = max(F_n, 0)
+ * / scale.  Returns |p|. */
+static double slide_point(const ffc_nts_law *law, const ffc_nts_node *d, const double n[3], double p[3],
+                          double mt[3], double *mu)
+{
+    const double fn = ffc__dot(d->f, n);
+    for (int i = 0; i < 3; i++) mt[i] = -(d->f[i] - fn * n[i]) / law->scale;
+    const double sn = ffc__dot(d->slip, n);
+    for (int i = 0; i < 3; i++) p[i] = mt[i] + d->slip[i] - sn * n[i];
+    *mu = fmax(fn, 0.0) / law->scale;
+    return sqrt(ffc__dot(p, p));
+}
+
+/* Formulation (sliding rows).  With multipliers m = (m_n, m_t) in the
+ * basis (n, t1, t2) the force on the slave is F = -scale (m_n n + m_t),
+ * and Coulomb's law in its projection form (c = scale) reads
+ *   m_t = P(m_t + s),  P the projection onto the disc |m_t| <= nu_d mu,
+ * mu = -m_n.  A sliding node is outside the disc: with p = m_t + s,
+ *   Phi = m_t - nu_d mu p / |p| = 0.
+ * Semi-smooth Newton at the last iterate (m_t, mu, s):
+ *   dPhi = dm_t - nu_d ph dmu + M (dm_t + ds),
+ *   M = -(nu_d mu I - mb ph^T) / |p|     (ph = p / |p|; 2 x 2 in the plane),
+ * where mb, the last m_t projected onto the disc (mb = nu_d mu ph at the
+ * solution, which gives M its exact value -nu_d mu (I - ph ph^T) / |p|),
+ * keeps the iteration from diverging when m_t is far outside the disc
+ * (the damped linearization of Hueber, Stadler and Wohlmuth).  Phi + dPhi
+ * = 0 becomes the two rows
+ *   M s + (I + M) m_t + nu_d ph m_n = M p - Phi = mb - nu_d mu ph,
+ * with s = T (D u - D u^n): kinematic directions v_a = M^T t_a (entries of
+ * B), right-hand side v_a . D u^n + t_a . (mb - nu_d mu ph), and the
+ * multiplier block C_ab = delta_ab + t_a . M t_b, C_an = nu_d t_a . ph.
+ * |p| below nu_d mu (a node the chattering guard kept sliding) is raised
+ * to nu_d mu in M. */
 
 int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixed[],
                  long nn, ffc_nts_node nodes[], long cap, long Bi[], long Bj[],
@@ -229,6 +244,7 @@ int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixe
     if (cap > 0 && (!Bi || !Bj || !Bv || !Fv)) return FFC_ERR_NULL;
     if (ccap > 0 && !c) return FFC_ERR_NULL;
     const double sc = law->scale;
+    const long ndof = 3 * pair->nv;
     long nt = 0, nr = 0;
     for (long k = 0; k < nn; k++) {
         ffc_nts_node *d = &nodes[k];
@@ -245,16 +261,44 @@ int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixe
             coef[a + 1] = -d->L[a];
         }
         memcpy(d->nr, d->n, sizeof d->nr);
-        double v[3][3], w[3][3];
-        const int nrow = row_dirs(law, d, d->n, v, w);
+        double v[3][3], w[3][3], Cm[3][3] = {{0}};
+        const int nrow = force_dirs(law, d, d->n, w);
+        memcpy(v, w, sizeof v);
+        int sliding = 0;
+        double extra[3] = {0, 0, 0};   /* t_a . (mb - nu_d mu ph) */
+        if (nrow == 3 && d->state == FFC_NTS_SLIDE) {
+            double p[3], mt[3], mu;
+            const double pn = slide_point(law, d, d->n, p, mt, &mu);
+            if (pn > 0) {
+                sliding = 1;
+                const double bound = law->nu_d * mu, rho = fmax(pn, bound);
+                const double mtn = sqrt(ffc__dot(mt, mt));
+                const double shrink = mtn > bound ? bound / mtn : 1.0;
+                double mb[3];
+                for (int i = 0; i < 3; i++) {
+                    d->dir[i] = p[i] / pn;
+                    mb[i] = shrink * mt[i];
+                }
+                for (int a = 1; a < 3; a++) {
+                    const double ta_mb = ffc__dot(w[a], mb);
+                    for (int i = 0; i < 3; i++) v[a][i] = -(bound * w[a][i] - d->dir[i] * ta_mb) / rho;
+                    for (int b = 1; b < 3; b++) Cm[a][b] = (a == b) + ffc__dot(w[b], v[a]);
+                    Cm[a][0] = law->nu_d * ffc__dot(w[a], d->dir);
+                    extra[a] = ta_mb - bound * ffc__dot(w[a], d->dir);
+                }
+            }
+        }
+        const long row0 = nr;
         for (int r = 0; r < nrow; r++) {
+            if (r > 0 && sliding && !(d->rmask & 1)) break;  /* no normal row: nothing to slide on */
             /* right-hand side: the gap closes (normal row) or no tangential
-             * motion since u^n (tangent rows) */
+             * motion since u^n (tangent rows; the sliding rows' M s^n) */
             double rhs = 0.0;
             const double *uref = (r > 0 && pair->u_prev) ? pair->u_prev : pair->u;
             for (int a = 0; a < 4; a++)
                 for (int i = 0; i < 3; i++) rhs += coef[a] * v[r][i] * uref[3 * dofn[a] + i];
             if (r == 0) rhs -= d->gap;
+            if (sliding) rhs += extra[r];
             long used = 0;
             for (int a = 0; a < 4; a++)
                 for (int i = 0; i < 3; i++) {
@@ -274,6 +318,21 @@ int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixe
                     nt++;
                     used++;
                 }
+            if (sliding && r > 0) {
+                /* the multiplier block: columns ndof + row of the node's
+                 * normal and tangent multipliers (rows row0 .. row0 + 2) */
+                for (int b = 0; b < 3; b++) {
+                    if (Cm[r][b] == 0.0) continue;
+                    if (nt < cap) {
+                        Bi[nt] = nr;
+                        Bj[nt] = ndof + row0 + b;
+                        Bv[nt] = sc * Cm[r][b];
+                        Fv[nt] = 0.0;
+                    }
+                    nt++;
+                }
+                used++;
+            }
             if (used == 0) continue;  /* wholly on Dirichlet dofs: nothing to enforce */
             if (nr < ccap) c[nr] = sc * rhs;
             if (d->row < 0) d->row = nr;
@@ -323,8 +382,8 @@ int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn
         memset(d->f, 0, sizeof d->f);
         d->fn = 0.0;
         if (d->row < 0) continue;
-        double v[3][3], w[3][3];
-        const int nrow = row_dirs(law, d, d->nr, v, w);
+        double w[3][3];
+        const int nrow = force_dirs(law, d, d->nr, w);
         long r = d->row;
         for (int b = 0; b < nrow; b++) {
             if (!(d->rmask & (1 << b))) continue;
@@ -344,6 +403,7 @@ int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn
     for (long k = 0; k < nn; k++) st->chatter += nodes[k].chatter;
     const int one_at_a_time = st->chatter > 0;
     int first_open = 1;
+    double slide_res = 0.0;
     for (long k = 0; k < nn; k++) {
         ffc_nts_node *d = &nodes[k];
         const int old = d->state;
@@ -370,18 +430,23 @@ int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn
                 next = FFC_NTS_SLIDE;
                 for (int i = 0; i < 3; i++) newdir[i] = -ft[i] / ftn;
             }
-        } else if (old == FFC_NTS_SLIDE && law->nu_s > 0 && d->row >= 0) {
-            /* q = nu_d F_n d - f_lat e + c s: the sliding traction pushed on
-             * by the slip s along d and turned by the lateral reaction; the
-             * node sticks when |q| falls to the bound (a slip reversed by up
-             * to 2 nu_d F_n / c) or q turns against d (the stick force then
-             * gives the new direction), else slides along q */
-            double q[3];
-            for (int i = 0; i < 3; i++) q[i] = -ft[i] + law->scale * d->slip[i];
-            const double qn = sqrt(ffc__dot(q, q));
-            if (!(qn > law->nu_d * d->fn) || qn == 0 || ffc__dot(q, d->dir) <= 0) next = FFC_NTS_STICK;
-            else
-                for (int i = 0; i < 3; i++) newdir[i] = q[i] / qn;
+        } else if (old == FFC_NTS_SLIDE && law->nu_d > 0 && d->row >= 0) {
+            /* the projection form at the new iterate: q = scale p =
+             * -F_t + scale s; the node sticks when q is inside the disc
+             * |q| <= nu_d F_n, else slides along q (the sliding rows'
+             * residual |F_t + nu_d F_n q/|q|| measures how far the
+             * Newton iterate is from Coulomb's law) */
+            double p[3], mt[3], mu;
+            const double pn = slide_point(law, d, d->nr, p, mt, &mu);
+            if (!(pn > law->nu_d * mu) || pn == 0) next = FFC_NTS_STICK;
+            else {
+                double r[3];
+                for (int i = 0; i < 3; i++) {
+                    newdir[i] = p[i] / pn;
+                    r[i] = ft[i] + law->nu_d * d->fn * newdir[i];
+                }
+                slide_res = fmax(slide_res, sqrt(ffc__dot(r, r)));
+            }
         }
         if (next != old && one_at_a_time && st->changes > 0) {
             next = old;
@@ -417,6 +482,7 @@ int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn
         }
         for (int i = 0; i < 3; i++) st->force[i] += d->f[i];
     }
+    st->max_slide_res = fmax_n > 0 ? slide_res / fmax_n : slide_res;
     return FFC_OK;
 }
 

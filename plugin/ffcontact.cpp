@@ -1099,15 +1099,17 @@ long ffcNTSNodes(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP, K
     return nn;
 }
 
-// ffcNTSRows(Th, u, uprev, CP, N, fixed, opt, B, Bf, c): the constraint
+// ffcNTSRows(Th, u, uprev, CP, N, fixed, opt, B, Bf, C, c): the constraint
 // rows of the contact nodes of N at X + u (tangential motion measured from
 // uprev, the last converged step), without the columns of the dofs with
-// fixed[i] != 0 (moved to c with the values in u): B and Bf (nrows x 3nv)
-// and c (nrows) for the system [K, Bf'; B, 0] [u; m] = [f; c]; updates N;
-// returns nrows.
+// fixed[i] != 0 (moved to c with the values in u): B and Bf (nrows x 3nv),
+// C (nrows x nrows, the multipliers' part of the sliding rows with
+// friction; no entries otherwise) and c (nrows) for the system
+// [K, Bf'; B, C] [u; m] = [f; c]; updates N; returns nrows.
 long ffcNTSRows(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
                 KNM<double> *const &N, KN<double> *const &fixed, KN<double> *const &opt,
-                Matrice_Creuse<double> *const &B, Matrice_Creuse<double> *const &Bf, KN<double> *const &cv)
+                Matrice_Creuse<double> *const &B, Matrice_Creuse<double> *const &Bf,
+                Matrice_Creuse<double> *const &C, KN<double> *const &cv)
 {
     const char *fn = "ffcNTSRows";
     NtsCall c;
@@ -1116,6 +1118,7 @@ long ffcNTSRows(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, 
     need_size(fn, "fixed", fixed, 3 * c.m.nv);
     if (!B) fail(fn, "argument 'B': matrix is not defined");
     if (!Bf) fail(fn, "argument 'Bf': matrix is not defined");
+    if (!C) fail(fn, "argument 'C': matrix is not defined");
     if (!cv) fail(fn, "argument 'c': array is not defined");
     nts_locate(fn, c, 0);
     const long nn = (long)c.nodes.size();
@@ -1130,7 +1133,12 @@ long ffcNTSRows(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, 
     const int n = (int)(3 * c.m.nv);
     HashMatrix<int, double> *hb = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
     HashMatrix<int, double> *hf = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
+    HashMatrix<int, double> *hc = new HashMatrix<int, double>((int)nr, (int)nr, 0, 0);
     for (long t = 0; t < nt; t++) {
+        if (Bj[t] >= n) {
+            (*hc)((int)Bi[t], (int)(Bj[t] - n)) += Bv[t];
+            continue;
+        }
         (*hb)((int)Bi[t], (int)Bj[t]) += Bv[t];
         (*hf)((int)Bi[t], (int)Bj[t]) += Fv[t];
     }
@@ -1138,21 +1146,24 @@ long ffcNTSRows(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, 
     B->typemat = 0;
     Bf->A.master(hf);
     Bf->typemat = 0;
+    C->A.master(hc);
+    C->typemat = 0;
     cv->resize(nr);
     for (long r = 0; r < nr; r++) (*cv)[r] = rhs[r];
     nts_table_out(c, N);
     return nr;
 }
 
-const long NTS_S_SIZE = 15;
+const long NTS_S_SIZE = 16;
 
 // ffcNTSUpdate(Th, u, uprev, CP, N, m, opt, S): after the solve, the
 // contact forces from the multipliers m of the rows of the last
 // ffcNTSRows, then the open / stick / slide / release transitions at X + u;
 // S = [changes, open, stick, slide, nodes the chattering guard acts on, released, max penetration,
 // min F_n, min open gap, max change of a sliding direction, Fx, Fy, Fz,
-// max |F_t| / F_n, max |gap| of the nodes that stay in contact]; returns the number
-// of state changes.
+// max |F_t| / F_n, max |gap| of the nodes that stay in contact, Coulomb's
+// law's residual max |F_t + nuD F_n d| / max F_n over sliding nodes];
+// returns the number of state changes.
 long ffcNTSUpdate(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
                   KNM<double> *const &N, KN<double> *const &mult, KN<double> *const &opt, KN<double> *const &S)
 {
@@ -1183,7 +1194,7 @@ long ffcNTSUpdate(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up
     const double v[NTS_S_SIZE] = {(double)st.changes, (double)st.open, (double)st.stick, (double)st.slide,
                                   (double)st.chatter, (double)st.released, st.max_pen, st.min_fn, st.min_gap_open,
                                   st.max_ddir, st.force[0], st.force[1], st.force[2], st.max_ratio,
-                                  st.max_gap_err};
+                                  st.max_gap_err, st.max_slide_res};
     for (long k = 0; k < NTS_S_SIZE; k++) (*S)[k] = v[k];
     return st.changes;
 }
@@ -1483,7 +1494,7 @@ static void init()
     typedef KNM<double> *T;
     typedef Matrice_Creuse<double> *M;
     Global.Add("ffcNTSNodes", "(", new OneOperatorN<long, pmesh3, V, KN<long> *, V, T>(ffcNTSNodes));
-    Global.Add("ffcNTSRows", "(", new OneOperatorN<long, pmesh3, V, V, KN<long> *, T, V, V, M, M, V>(ffcNTSRows));
+    Global.Add("ffcNTSRows", "(", new OneOperatorN<long, pmesh3, V, V, KN<long> *, T, V, V, M, M, M, V>(ffcNTSRows));
     Global.Add("ffcNTSUpdate", "(", new OneOperatorN<long, pmesh3, V, V, KN<long> *, T, V, V, V>(ffcNTSUpdate));
     Global.Add("ffcNTSPoints", "(", new OneOperatorN<long, pmesh3, V, T, T>(ffcNTSPoints));
     Global.Add("ffcReducedMissing", "(", new OneOperator3_<long, M, KN<long> *, KN<long> *>(ffcReducedMissing));

@@ -3,6 +3,7 @@
  * the open / stick / slide / release transitions, bad input. */
 #include "ffc_test.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -238,36 +239,37 @@ static void test_transitions(void **state)
     assert_int_equal(c->state, FFC_NTS_SLIDE);
     assert_close(c->dir[1], -1, 1e-15);
     assert_int_equal(st.slide, 1);
-    /* slide rows: the normal row, whose Bf carries the friction nu_d F_n
-     * against dir, and the lateral row e = n x dir = (1, 0, 0) */
+    /* slide rows: the normal row and two sliding rows (Coulomb's law
+     * linearized; their multiplier block C sits in columns 3 nv + row);
+     * the force directions (Bf) are n, t1, t2 as in stick */
     assert_int_equal(ffc_nts_rows(&p, &law, NULL, 3, nd, 64, Bi, Bj, Bv, Fv, 9, cc, &nt, &nr), FFC_OK);
-    assert_int_equal(nr, 8);
+    assert_int_equal(nr, 9);
     int seen = 0;
     for (long t = 0; t < nt; t++) {
-        if (Bi[t] == 0 && Bj[t] == 3 * 3 + 1) {
-            assert_close(Bv[t], 0, 0);
-            assert_close(Fv[t], law.scale * law.nu_d, 1e-15);  /* -nu_d dir_y */
+        if (Bj[t] >= 18) {
+            assert_true(Bi[t] == 1 || Bi[t] == 2);      /* only the sliding node's rows */
+            assert_true(Bj[t] - 18 <= 2);                /* and its own multipliers */
+            assert_close(Fv[t], 0, 0);
             seen++;
         }
-        if (Bi[t] == 1 && Bj[t] == 3 * 3) {
-            assert_close(Bv[t], law.scale, 1e-15);
-            assert_close(Fv[t], law.scale, 1e-15);
-            seen++;
-        }
+        if (Bi[t] == 1 && Bj[t] == 3 * 3 + 1) assert_close(Fv[t], -law.scale, 1e-15);   /* t1 = (0,-1,0) */
     }
-    assert_int_equal(seen, 2);
+    assert_true(seen >= 2);
     memset(m, 0, sizeof m);
     m[0] = -10 / law.scale;
-    /* sliding on along dir: stays sliding with |F_t| = nu_d F_n exactly */
+    m[1] = 4 / law.scale;   /* F_t = -4 t1 = (0, 4, 0) = nu_d F_n against the slip (-y) */
+    /* sliding on along dir: stays sliding, Coulomb's law satisfied */
     for (int i = 0; i < 18; i++) up[i] = u[i];
     u[3 * 3 + 1] -= 0.02;
     assert_int_equal(ffc_nts_locate(&p, &law, NULL, 0, 3, nd), FFC_OK);
-    assert_int_equal(ffc_nts_update(&law, 8, m, 3, nd, &st), FFC_OK);
+    assert_int_equal(ffc_nts_update(&law, 9, m, 3, nd, &st), FFC_OK);
     assert_int_equal(c->state, FFC_NTS_SLIDE);
     assert_close(c->fn, 10, 1e-13);
     assert_close(c->f[1], law.nu_d * 10, 1e-13);   /* friction against the slip (-y) */
     assert_close(c->f[0], 0, 1e-15);
-    assert_int_equal(ffc_nts_nrows(3, nd), 8);
+    assert_close(c->dir[1], -1, 1e-15);
+    assert_close(st.max_slide_res, 0, 1e-15);
+    assert_int_equal(ffc_nts_nrows(3, nd), 9);
     /* per-node output: pressure and traction per tributary area, state,
      * dissipation |F_t . slip| / area */
     double P[3 * FFC_POINT_COLS];
@@ -303,6 +305,101 @@ static void test_transitions(void **state)
     assert_int_equal(ffc_nts_rows(&p, &law, NULL, 3, nd, 64, Bi, Bj, Bv, Fv, 9, cc, &nt, &nr), FFC_OK);
     assert_int_equal(c->row, -1);
     assert_int_equal(nr, 6);
+}
+
+/* The sliding rows against Coulomb's law Phi = m_t - nu_d mu p/|p|,
+ * p = m_t + s, mu = -m_n, on a flat fixed master (the foot's motion does
+ * not enter s): at the point of linearization the rows' residual is
+ * scale Phi, wherever that point is; on the law (m_t = nu_d mu p/|p|,
+ * where the damped linearization is the exact one) their entries (B on
+ * the slave dofs, C) are scale times the central differences of Phi; the
+ * master columns are -L_a times the slave's. */
+static double slide_phi(int a, const double t[3][3], double nu, const double up[3], const double uc[3],
+                        const double m[3])
+{
+    double mt[3], p[3];
+    const double un = uc[2] - up[2];   /* n = e_z */
+    for (int i = 0; i < 3; i++) {
+        mt[i] = m[1] * t[1][i] + m[2] * t[2][i];
+        p[i] = mt[i] + (uc[i] - up[i]) - (i == 2) * un;
+    }
+    const double pn = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    double phi = 0;
+    for (int i = 0; i < 3; i++) phi += t[a][i] * (mt[i] + nu * m[0] * p[i] / pn);
+    return phi;
+}
+
+static void check_slide_rows(const double mt_force[2], int exact)
+{
+    double X[6 * 3] = {-1, -1, 0, 2, -1, 0, 0, 2, 0, 0.1, 0.1, 0, 0.1, 1.1, 0, 1.1, 0.1, 0};
+    long Fm[3] = {0, 1, 2}, Fs[3] = {3, 4, 5};
+    double u[18], up[18];
+    memset(u, 0, sizeof u);
+    memset(up, 0, sizeof up);
+    up[9] = 1.0;        /* slip s = u_c - up_c = (-1, 1, 0) */
+    up[10] = -1.0;
+    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, up, NULL};
+    ffc_nts_law law = {0.5, 0.4, 1e-12, 1e-9, 20, 2.0};
+    ffc_nts_node nd[3];
+    long need, Bi[64], Bj[64], nt, nr;
+    double Bv[64], Fv[64], c[9];
+    assert_int_equal(ffc_nts_nodes(&p, 3, nd, &need), 3);
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, 3, nd), FFC_OK);
+    nd[0].state = FFC_NTS_SLIDE;
+    nd[1].state = nd[2].state = FFC_NTS_OPEN;
+    /* the tangent basis from the force directions of the rows */
+    assert_int_equal(ffc_nts_rows(&p, &law, NULL, 3, nd, 64, Bi, Bj, Bv, Fv, 9, c, &nt, &nr), FFC_OK);
+    assert_int_equal(nr, 3);
+    double t[3][3] = {{0}};
+    for (long k = 0; k < nt; k++)
+        if (Bj[k] >= 9 && Bj[k] < 12) t[Bi[k]][Bj[k] - 9] = Fv[k] / law.scale;
+    assert_close(t[0][2], 1, 1e-15);
+    /* m0 from the force F = -scale (m_n n + m_t): F_n = 10 */
+    const double m0[3] = {-10 / law.scale, -(mt_force[0] * t[1][0] + mt_force[1] * t[1][1]) / law.scale,
+                          -(mt_force[0] * t[2][0] + mt_force[1] * t[2][1]) / law.scale};
+    for (int i = 0; i < 3; i++) nd[0].f[i] = -law.scale * (m0[0] * t[0][i] + m0[1] * t[1][i] + m0[2] * t[2][i]);
+    assert_int_equal(ffc_nts_rows(&p, &law, NULL, 3, nd, 64, Bi, Bj, Bv, Fv, 9, c, &nt, &nr), FFC_OK);
+    assert_int_equal(nr, 3);
+    double B[3][21] = {{0}};   /* 18 displacement columns, 3 multiplier columns */
+    for (long k = 0; k < nt; k++) B[Bi[k]][Bj[k]] += Bv[k];
+    const double h = 1e-6;
+    for (int a = 1; a < 3; a++) {
+        double res = -c[a];
+        for (int j = 0; j < 18; j++) res += B[a][j] * u[j];
+        for (int j = 0; j < 3; j++) res += B[a][18 + j] * m0[j];
+        assert_close(res, law.scale * slide_phi(a, t, law.nu_d, up + 9, u + 9, m0), 1e-13);
+        for (int b = 0; b < 3; b++)       /* master columns: -L_b times the slave's */
+            for (int i = 0; i < 3; i++) assert_close(B[a][3 * b + i], -nd[0].L[b] * B[a][9 + i], 1e-14);
+        if (!exact) continue;
+        for (int i = 0; i < 3; i++) {
+            double uc[3] = {u[9], u[10], u[11]}, um[3] = {u[9], u[10], u[11]};
+            uc[i] += h;
+            um[i] -= h;
+            const double fd = law.scale * (slide_phi(a, t, law.nu_d, up + 9, uc, m0) -
+                                           slide_phi(a, t, law.nu_d, up + 9, um, m0)) / (2 * h);
+            assert_close(B[a][9 + i], fd, 1e-8);
+        }
+        for (int j = 0; j < 3; j++) {
+            double mp[3] = {m0[0], m0[1], m0[2]}, mm[3] = {m0[0], m0[1], m0[2]};
+            mp[j] += h;
+            mm[j] -= h;
+            const double fd = law.scale * (slide_phi(a, t, law.nu_d, up + 9, u + 9, mp) -
+                                           slide_phi(a, t, law.nu_d, up + 9, u + 9, mm)) / (2 * h);
+            assert_close(B[a][18 + j], fd, 1e-8);
+        }
+    }
+}
+
+static void test_slide_rows_fd(void **state)
+{
+    (void)state;
+    /* s = (-1, 1, 0): the friction force nu_d F_n = 4 against it */
+    const double on_law[2] = {4 / sqrt(2.0), -4 / sqrt(2.0)};
+    const double inside[2] = {3, -1};     /* |F_t| = 3.2 < nu_d F_n = 4 */
+    const double outside[2] = {5, -4};    /* |F_t| = 6.4 > 4 */
+    check_slide_rows(on_law, 1);
+    check_slide_rows(inside, 0);
+    check_slide_rows(outside, 0);
 }
 
 /* frictionless: contact nodes slide, one row each, B == Bf (symmetric) */
@@ -417,6 +514,7 @@ int main(void)
         cmocka_unit_test(test_nodes),
         cmocka_unit_test(test_rows_geometry),
         cmocka_unit_test(test_transitions),
+        cmocka_unit_test(test_slide_rows_fd),
         cmocka_unit_test(test_frictionless),
         cmocka_unit_test(test_chattering_guard),
         cmocka_unit_test(test_bad_input),
