@@ -498,7 +498,9 @@ int ffc_write_columns(const char *path, const char *header, long n, int ncol,
  * max_flips times in one load step, each update makes one change only,
  * at the first node in order that asks for one (the least-index rule,
  * which terminates for frictionless contact, a P-matrix complementarity
- * problem, where changing every violated node at once may cycle). */
+ * problem, where changing every violated node at once may cycle).  A
+ * node that has changed state 2 max_flips times stays open for the rest of
+ * the step (stats->locked; its penetration is min_gap_open). */
 enum { FFC_NTS_OPEN = 0, FFC_NTS_STICK = 1, FFC_NTS_SLIDE = 2 };
 
 typedef struct {
@@ -531,6 +533,8 @@ typedef struct {
     double nr[3];      /* normal the rows were built with (1) */
     double f[3];       /* contact force on the slave node (force) */
     double fn;         /* its normal part n_r . f, > 0 compressive (force) */
+    long mfprev;       /* master facet before the last change of mf in this step, -1 for none */
+    int frozen;        /* 1: mf is kept for the rest of the step (no search) */
 } ffc_nts_node;
 
 /* Summary of an update. */
@@ -539,6 +543,9 @@ typedef struct {
     long open, stick, slide; /* nodes in each state after it */
     long chatter;      /* nodes that reached max_flips: the guard acts (one change per update) */
     long released;     /* contact -> open changes in this update */
+    long locked;       /* open nodes that penetrate but were kept open: they changed
+                          state 2 max_flips times in this step (min_gap_open shows
+                          their penetration) */
     double max_pen;    /* largest penetration max(0, -g) over contact nodes (length) */
     double min_fn;     /* smallest F_n over the nodes that had rows (force; 0 if none):
                           negative when a node was released */
@@ -560,7 +567,12 @@ long ffc_nts_nodes(const ffc_pair *pair, long cap, ffc_nts_node out[], long *nee
 
 /* Pairs each node with the master facet under it at x = X + u (search
  * options o, NULL for the defaults) and refreshes mf, L, n, gap and
- * slip (against pair->u_prev; zero when it is NULL).  With init != 0 the
+ * slip (against pair->u_prev; zero when it is NULL).  A contact node
+ * whose facet returns to the one it had before (A -> B -> A: it sits in a
+ * valley of the master between two facets, and one facet's constraint
+ * puts it into the other) is frozen: it keeps that facet, projected onto
+ * it (onto its boundary when the foot is outside), until the caller
+ * clears frozen and mfprev (at the next load step).  With init != 0 the
  * state is also set: contact (stick if law->nu_s > 0, else slide) when
  * g <= law->gtol, open otherwise. */
 int ffc_nts_locate(const ffc_pair *pair, const ffc_nts_law *law, const ffc_search_opts *o,

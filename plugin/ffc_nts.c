@@ -72,6 +72,7 @@ long ffc_nts_nodes(const ffc_pair *pair, long cap, ffc_nts_node out[], long *nee
         out[k].node = v[k];
         out[k].state = FFC_NTS_OPEN;
         out[k].mf = -1;
+        out[k].mfprev = -1;
         out[k].row = -1;
     }
     free(v);
@@ -130,6 +131,35 @@ int ffc_nts_locate(const ffc_pair *pair, const ffc_nts_law *law, const ffc_searc
     const double *up = pair->u_prev;
     for (long k = 0; k < nn; k++) {
         ffc_nts_node *d = &nodes[k];
+        if (init) {
+            d->mfprev = -1;
+            d->frozen = 0;
+        }
+        const long mfold = d->mf;
+        if (d->frozen && mfold >= 0 && mfold < pair->nfm) {
+            /* the kept facet, projected onto (clamped to its boundary) */
+            double Xm[3][3];
+            ffc_proj pr;
+            for (int a = 0; a < 3; a++)
+                for (int i = 0; i < 3; i++) Xm[a][i] = x[3 * pair->Fm[3 * mfold + a] + i];
+            if (ffc_project(3, (const double(*)[3])Xm, p + 3 * k, &pr) < 0) {
+                free(x);
+                free(lk);
+                return FFC_ERR_DEGENERATE;
+            }
+            lk[k].mf = mfold;
+            lk[k].xm[0] = pr.xi[0];
+            lk[k].xm[1] = pr.xi[1];
+            lk[k].gap = pr.gap;
+            for (int i = 0; i < 3; i++) lk[k].n[i] = pr.n[i];
+        } else if (!init && d->state != FFC_NTS_OPEN && mfold >= 0 && lk[k].mf >= 0 && lk[k].mf != mfold) {
+            if (lk[k].mf == d->mfprev) {
+                d->frozen = 1;      /* back to the facet before: keep it */
+                d->mfprev = mfold;
+            } else {
+                d->mfprev = mfold;
+            }
+        }
         d->mf = lk[k].mf;
         d->gap = 0.0;
         memset(d->L, 0, sizeof d->L);
@@ -413,7 +443,12 @@ int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn
         double newdir[3];
         memcpy(newdir, d->dir, sizeof newdir);
         if (old == FFC_NTS_OPEN) {
-            if (d->mf >= 0 && d->gap < -law->gtol) {
+            /* a node that has changed state 2 max_flips times in this step
+             * stays open (a release / re-contact cycle the least-index
+             * rule cannot break: the geometry differs between the two
+             * states); its penetration shows in min_gap_open */
+            if (d->mf >= 0 && d->gap < -law->gtol && d->flips >= 2 * law->max_flips) st->locked++;
+            else if (d->mf >= 0 && d->gap < -law->gtol) {
                 /* a node arriving with tangential motion since u^n slides on
                  * along it: sticking would pull it back to where it was at u^n */
                 const double sn = sqrt(ffc__dot(d->slip, d->slip));

@@ -948,8 +948,9 @@ long ffcPointsF(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, 
 // Node-to-surface contact with Lagrange multipliers.
 // Node table N (real[int,int], one row per slave node), columns in the
 // order of ffc_nts_node: node, area, state, flips, chatter, dir (3), master
-// facet, L (3), n (3), gap, slip (3), row, rmask, nr (3), f (3), fn.
-const long NTS_COLS = 28;
+// facet, L (3), n (3), gap, slip (3), row, rmask, nr (3), f (3), fn,
+// previous facet, frozen.
+const long NTS_COLS = 30;
 
 void nts_to_row(const ffc_nts_node &d, KNM<double> &N, long k)
 {
@@ -957,7 +958,7 @@ void nts_to_row(const ffc_nts_node &d, KNM<double> &N, long k)
                                 d.dir[0], d.dir[1], d.dir[2], (double)d.mf, d.L[0], d.L[1], d.L[2],
                                 d.n[0], d.n[1], d.n[2], d.gap, d.slip[0], d.slip[1], d.slip[2],
                                 (double)d.row, (double)d.rmask, d.nr[0], d.nr[1], d.nr[2],
-                                d.f[0], d.f[1], d.f[2], d.fn};
+                                d.f[0], d.f[1], d.f[2], d.fn, (double)d.mfprev, (double)d.frozen};
     for (long j = 0; j < NTS_COLS; j++) N(k, j) = v[j];
 }
 
@@ -971,6 +972,7 @@ void nts_from_row(const KNM<double> &N, long k, ffc_nts_node &d)
         d.nr[i] = v[21 + i]; d.f[i] = v[24 + i];
     }
     d.mf = (long)v[8]; d.gap = v[15]; d.row = (long)v[19]; d.rmask = (int)v[20]; d.fn = v[27];
+    d.mfprev = (long)v[28]; d.frozen = (int)v[29];
 }
 
 // Options opt (real[int]): [nu_s (static friction, >= 0), nu_d (dynamic,
@@ -1057,7 +1059,8 @@ void need_nts_table(const char *fn, KNM<double> *N, NtsCall &c)
             }
         nts_from_row(*N, k, c.nodes[k]);
         const ffc_nts_node &d = c.nodes[k];
-        if (d.node < 0 || d.node >= c.m.nv || d.state < 0 || d.state > 2 || d.mf < -1 || d.mf >= c.pair.nfm) {
+        if (d.node < 0 || d.node >= c.m.nv || d.state < 0 || d.state > 2 || d.mf < -1 || d.mf >= c.pair.nfm ||
+            d.mfprev < -1 || d.mfprev >= c.pair.nfm || (d.frozen != 0 && d.frozen != 1)) {
             std::ostringstream s;
             s << "argument 'N': row " << k << " (node " << (*N)(k, 0L) << ", state " << (*N)(k, 2L)
               << ", master facet " << (*N)(k, 8L) << ") is not a node of this pair (make N with ffcNTSNodes)";
@@ -1154,7 +1157,7 @@ long ffcNTSRows(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, 
     return nr;
 }
 
-const long NTS_S_SIZE = 16;
+const long NTS_S_SIZE = 17;
 
 // ffcNTSUpdate(Th, u, uprev, CP, N, m, opt, S): after the solve, the
 // contact forces from the multipliers m of the rows of the last
@@ -1162,7 +1165,8 @@ const long NTS_S_SIZE = 16;
 // S = [changes, open, stick, slide, nodes the chattering guard acts on, released, max penetration,
 // min F_n, min open gap, max change of a sliding direction, Fx, Fy, Fz,
 // max |F_t| / F_n, max |gap| of the nodes that stay in contact, Coulomb's
-// law's residual max |F_t + nuD F_n d| / max F_n over sliding nodes];
+// law's residual max |F_t + nuD F_n d| / max F_n over sliding nodes,
+// penetrating nodes kept open after 2 maxFlips changes];
 // returns the number of state changes.
 long ffcNTSUpdate(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
                   KNM<double> *const &N, KN<double> *const &mult, KN<double> *const &opt, KN<double> *const &S)
@@ -1194,7 +1198,7 @@ long ffcNTSUpdate(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up
     const double v[NTS_S_SIZE] = {(double)st.changes, (double)st.open, (double)st.stick, (double)st.slide,
                                   (double)st.chatter, (double)st.released, st.max_pen, st.min_fn, st.min_gap_open,
                                   st.max_ddir, st.force[0], st.force[1], st.force[2], st.max_ratio,
-                                  st.max_gap_err, st.max_slide_res};
+                                  st.max_gap_err, st.max_slide_res, (double)st.locked};
     for (long k = 0; k < NTS_S_SIZE; k++) (*S)[k] = v[k];
     return st.changes;
 }

@@ -12,7 +12,7 @@
 # Knob "solver": the linear solver at h_c = 0.025 (auto = CHOLMOD for this
 # symmetric scene; UMFPACK; MUMPS; reduced = the bulk matrix factorized once,
 # contact on the reduced system of its dofs).
-# Friction: the sliding block and Cattaneo-Mindlin with the direct path
+# Friction: the sliding block (also with node-to-surface) and Cattaneo-Mindlin with the direct path
 # (auto: UMFPACK, one factorization per Newton system) and the reduced one:
 #   results/study-friction.csv     one row per run (error, iterations, time split)
 #   results/study-friction.png     wall time of both paths
@@ -107,7 +107,7 @@ tval() { grep '"time"' "$1" | sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" | head -1; 
 # friction: both solver paths on the sliding block and Cattaneo-Mindlin, and
 # the sliding block's knobs (increments per ramp, tangential penalty)
 fcsv=results/study-friction.csv
-echo "case,label,h,solver,converged,error_name,error,newton,uzawa,factorizations,reduced_dofs,t_total,t_search,t_contact,t_bulk,t_solve,reps,peak_mb,args" > "$fcsv"
+echo "case,label,h,solver,converged,error_name,error,newton,uzawa,factorizations,reduced_dofs,t_total,t_search,t_contact,t_bulk,t_solve,reps,peak_mb,method,active_set,args" > "$fcsv"
 frun() {   # frun <case> <label> <h> <error field (max over the file)> <args...>
     case_=$1; label=$2; h=$3; ef=$4; shift 4
     out=results/study/$label
@@ -122,9 +122,11 @@ frun() {   # frun <case> <label> <h> <error field (max over the file)> <args...>
     err=$(sed -n "s/.*\"$ef\": \([^,}]*\).*/\1/p" "$j" | sort -g | tail -1)
     solver=$(val "$j" solver | tr -d '"')
     last() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" | tail -1; }   # the run's total, after per-level entries
-    echo "$case_,$label,$h,$solver,$([ $rc = 0 ] && echo 1 || echo 0),$ef,$err,$(last $j newton_iterations),$(last $j uzawa_iterations),$(val $j factorizations),$(val $j reduced_dofs),$tmed,$(tval $j search),$(tval $j contact_assembly),$(tval $j bulk_assembly),$(tval $j linear_solves),$n,$(tail -1 "$out.mem" | awk '{printf "%.1f", $1 / 1024}'),$*" >> "$fcsv"
+    echo "$case_,$label,$h,$solver,$([ $rc = 0 ] && echo 1 || echo 0),$ef,$err,$(last $j newton_iterations),$(last $j uzawa_iterations),$(val $j factorizations),$(val $j reduced_dofs),$tmed,$(tval $j search),$(tval $j contact_assembly),$(tval $j bulk_assembly),$(tval $j linear_solves),$n,$(tail -1 "$out.mem" | awk '{printf "%.1f", $1 / 1024}'),$(val $j method | tr -d '"'),$(val $j active_set_iterations),$*" >> "$fcsv"
     echo "  $label: wall=$tmed s"
 }
+# node-to-surface (exact constraints, UMFPACK on the saddle-point system)
+frun sliding-block "sb-nts" 0.15 err_plateau -method nts
 for sv in auto reduced; do
     frun sliding-block "sb-$sv" 0.15 err_plateau -solver $sv
     frun cattaneo-mindlin "cm-hc0.1-$sv" 0.1 err_c_over_h -hc 0.1 -solver $sv
@@ -184,8 +186,9 @@ plot 'results/study-mesh.dat' using 3:xtic(1) title 'linear solves', '' using 4 
      '' using 5 title 'contact assembly', '' using 6 title 'search', '' using 7 title 'other (script, output)'
 GP
 # friction: wall time of the two solver paths per case
-awk -F, 'NR > 1 && $2 ~ /-(auto|reduced)$/ {k = $2; sub(/-(auto|reduced)$/, "", k); t[k, $4] = $12; if (!(k in seen)) {seen[k] = 1; order[++n] = k}}
-    END {for (i = 1; i <= n; i++) print order[i], t[order[i], "auto"], t[order[i], "reduced"]}' results/study-friction.csv \
+awk -F, 'NR > 1 && $2 ~ /-(auto|reduced|nts)$/ {k = $2; m = $2; sub(/-(auto|reduced|nts)$/, "", k); sub(/.*-/, "", m);
+    t[k, m] = $12; if (!(k in seen)) {seen[k] = 1; order[++n] = k}}
+    END {for (i = 1; i <= n; i++) {o = order[i]; print o, t[o, "auto"], t[o, "reduced"], ((o, "nts") in t) ? t[o, "nts"] : "NaN"}}' results/study-friction.csv \
     > results/study-friction.dat
 gnuplot <<'GP'
 set terminal pngcairo size 760,480
@@ -196,9 +199,10 @@ set style fill solid 0.8 border -1
 set logscale y
 set grid y
 set ylabel 'wall time (s, median)'
-set title 'Friction cases: wall time of the two solver paths'
+set title 'Friction cases: wall time of the two solver paths and of node-to-surface'
 set key top left
 set yrange [1:*]
-plot 'results/study-friction.dat' using 2:xtic(1) title 'direct (UMFPACK)', '' using 3 title 'reduced (CHOLMOD once)'
+plot 'results/study-friction.dat' using 2:xtic(1) title 'AL direct (UMFPACK)', '' using 3 title 'AL reduced (CHOLMOD once)', \
+     '' using 4 title 'node-to-surface (UMFPACK, saddle point)'
 GP
 echo "wrote $csv, results/study-pareto.png, results/study-eps.png, results/study-time.png, results/study-friction.csv, results/study-friction.png"

@@ -402,6 +402,44 @@ static void test_slide_rows_fd(void **state)
     check_slide_rows(outside, 0);
 }
 
+/* a node in a valley of the master (facets A: z = -0.1 x, x < 0, and B:
+ * z = 0.1 x, x > 0) whose facet goes A -> B -> A keeps A: its gap is then
+ * the distance to A's plane even where B is closer */
+static void test_valley_freeze(void **state)
+{
+    (void)state;
+    double X[9 * 3] = {0, -2, 0, 0, 2, 0, -2, 0, 0.2, 0, 2, 0, 0, -2, 0, 2, 0, 0.2,
+                       0, 0, 0.05, 0, 0.5, 1, 0.5, 0, 1};
+    long Fm[6] = {0, 1, 2, 3, 4, 5}, Fs[3] = {6, 7, 8};
+    double u[27];
+    memset(u, 0, sizeof u);
+    ffc_pair p = {3, 1, Fs, 3, 2, Fm, 9, X, u, NULL, NULL};
+    ffc_nts_law law = {0, 0, 1e-12, 1e-9, 8, 1.0};
+    ffc_nts_node nd[3];
+    long need;
+    assert_int_equal(ffc_nts_nodes(&p, 3, nd, &need), 3);
+    double *u6 = u + 18;
+    const double side[4] = {-0.3, 0.3, -0.3, 0.3};
+    const long facet[4] = {0, 1, 0, 0}, before[4] = {-1, 0, 1, 1};
+    const int frozen[4] = {0, 0, 1, 1};
+    for (int k = 0; k < 4; k++) {
+        u6[0] = side[k];
+        u6[2] = -0.1;
+        assert_int_equal(ffc_nts_locate(&p, &law, NULL, k == 0, 3, nd), FFC_OK);
+        if (k == 0) assert_int_equal(nd[0].state, FFC_NTS_SLIDE);
+        assert_int_equal(nd[0].mf, facet[k]);
+        assert_int_equal(nd[0].mfprev, before[k]);
+        assert_int_equal(nd[0].frozen, frozen[k]);
+    }
+    /* kept on A at x = 0.3: n_A . (x - 0) with n_A = (0.1, 0, 1) / sqrt(1.01) */
+    assert_close(nd[0].gap, (0.1 * 0.3 - 0.05) / sqrt(1.01), 1e-14);
+    assert_close(nd[0].L[0] + nd[0].L[1] + nd[0].L[2], 1, 1e-14);
+    /* a new step (init) searches again */
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, 3, nd), FFC_OK);
+    assert_int_equal(nd[0].mf, 1);
+    assert_int_equal(nd[0].frozen, 0);
+}
+
 /* frictionless: contact nodes slide, one row each, B == Bf (symmetric) */
 static void test_frictionless(void **state)
 {
@@ -467,6 +505,18 @@ static void test_chattering_guard(void **state)
             assert_int_equal(nd[2].state, before[2]);
         }
     }
+    /* node 0 has changed state 7 times (>= 2 max_flips) and is open: it
+     * penetrates but stays open, reported; the next node changes instead */
+    assert_int_equal(nd[0].state, FFC_NTS_OPEN);
+    assert_true(nd[0].flips >= 2 * law.max_flips);
+    ffc_nts_rows(&p, &law, NULL, 3, nd, 64, Bi, Bj, Bv, Fv, 9, c, &nt, &nr);
+    for (long r = 0; r < nr; r++) m[r] = 1.0;
+    const int before1 = nd[1].state;
+    assert_int_equal(ffc_nts_update(&law, nr, m, 3, nd, &st), FFC_OK);
+    assert_int_equal(nd[0].state, FFC_NTS_OPEN);
+    assert_int_equal(st.locked, 1);
+    assert_close(st.min_gap_open, -0.01, 1e-15);
+    assert_true(nd[1].state != before1);
 }
 
 static void test_bad_input(void **state)
@@ -515,6 +565,7 @@ int main(void)
         cmocka_unit_test(test_rows_geometry),
         cmocka_unit_test(test_transitions),
         cmocka_unit_test(test_slide_rows_fd),
+        cmocka_unit_test(test_valley_freeze),
         cmocka_unit_test(test_frictionless),
         cmocka_unit_test(test_chattering_guard),
         cmocka_unit_test(test_bad_input),
