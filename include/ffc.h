@@ -27,7 +27,9 @@ enum {
     FFC_ERR_VALUE = -12,          /* a parameter outside its admissible range */
     FFC_ERR_MEMORY = -13,         /* allocation failed */
     FFC_ERR_INVERTED = -14,       /* a facet turned inside out (normal reversed) */
-    FFC_ERR_SINGULAR = -15        /* a linear system is singular (zero pivot) */
+    FFC_ERR_SINGULAR = -15,       /* a linear system is singular (zero pivot) */
+    FFC_ERR_FIXED_TANGENT = -16   /* friction at a node whose tangential motion is
+                                     prescribed (node-to-surface) */
 };
 
 /* Human-readable text of a status code (static string, never NULL). */
@@ -585,7 +587,11 @@ int ffc_nts_locate(const ffc_pair *pair, const ffc_nts_law *law, const ffc_searc
  * NULL) are moved to c with the value in pair->u, and a row left empty
  * is dropped.  cap: capacity of the triplet arrays, ccap of c.
  * Writes *ntrip and *nrows (or the sizes needed with FFC_ERR_CAPACITY)
- * and each node's row and nr. */
+ * and each node's row and nr.  With friction, a contact node with a fixed
+ * dof k in a tangential direction (|n_k| < 0.9, e.g. on a symmetry plane)
+ * gives FFC_ERR_FIXED_TANGENT with *ntrip = its index in nodes[]: its
+ * tangential rows would be (nearly) empty and the saddle-point system
+ * singular. */
 int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixed[],
                  long nn, ffc_nts_node nodes[], long cap, long Bi[], long Bj[],
                  double Bv[], double Fv[], long ccap, double c[], long *ntrip, long *nrows);

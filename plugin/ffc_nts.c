@@ -293,6 +293,13 @@ int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixe
         memcpy(d->nr, d->n, sizeof d->nr);
         double v[3][3], w[3][3], Cm[3][3] = {{0}};
         const int nrow = force_dirs(law, d, d->n, w);
+        if (nrow == 3 && fixed)
+            for (int i = 0; i < 3; i++)
+                if (fixed[3 * d->node + i] != 0 && fabs(d->n[i]) < 0.9) {
+                    *ntrip = k;
+                    *nrows = 0;
+                    return FFC_ERR_FIXED_TANGENT;
+                }
         memcpy(v, w, sizeof v);
         int sliding = 0;
         double extra[3] = {0, 0, 0};   /* t_a . (mb - nu_d mu ph) */

@@ -1126,8 +1126,16 @@ long ffcNTSRows(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, 
     nts_locate(fn, c, 0);
     const long nn = (long)c.nodes.size();
     long nt = 0, nr = 0;
-    ffc_nts_rows(&c.pair, &c.law, &(*fixed)[0], nn, c.nodes.data(), 0, nullptr, nullptr, nullptr, nullptr, 0,
-                 nullptr, &nt, &nr);
+    int st0 = ffc_nts_rows(&c.pair, &c.law, &(*fixed)[0], nn, c.nodes.data(), 0, nullptr, nullptr, nullptr,
+                           nullptr, 0, nullptr, &nt, &nr);
+    if (st0 == FFC_ERR_FIXED_TANGENT) {
+        std::ostringstream s;
+        s << "argument 'fixed': slave node " << c.nodes[nt].node << " is in contact with friction (nuS = "
+          << num(c.law.nu_s) << ") but has a prescribed displacement along the contact surface (e.g. a symmetry "
+          << "plane); node-to-surface friction needs free tangential motion there (use the augmented Lagrangian, "
+          << "or nuS = 0)";
+        fail(fn, s.str());
+    }
     std::vector<long> Bi(nt + 1), Bj(nt + 1);
     std::vector<double> Bv(nt + 1), Fv(nt + 1), rhs(nr + 1);
     int st = ffc_nts_rows(&c.pair, &c.law, &(*fixed)[0], nn, c.nodes.data(), nt, Bi.data(), Bj.data(), Bv.data(),

@@ -402,6 +402,35 @@ static void test_slide_rows_fd(void **state)
     check_slide_rows(outside, 0);
 }
 
+/* friction at a contact node with a prescribed tangential dof: an error
+ * naming the node (its rows would be empty); a prescribed normal dof or no
+ * friction is fine */
+static void test_fixed_tangent(void **state)
+{
+    (void)state;
+    double X[6 * 3] = {-5, -5, 0, 5, -5, 0, 0, 5, 0, 0, 0, 0, 0, 1, 0, 1, 0, 0};
+    long Fm[3] = {0, 1, 2}, Fs[3] = {3, 4, 5};
+    double u[18], fixed[18];
+    memset(u, 0, sizeof u);
+    memset(fixed, 0, sizeof fixed);
+    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, u, NULL};
+    ffc_nts_law law = {0.5, 0.4, 1e-12, 1e-9, 20, 2.0};
+    ffc_nts_node nd[3];
+    long need, Bi[64], Bj[64], nt, nr;
+    double Bv[64], Fv[64], c[9];
+    assert_int_equal(ffc_nts_nodes(&p, 3, nd, &need), 3);
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, 3, nd), FFC_OK);
+    fixed[3 * 4 + 2] = 1;     /* node 4: normal dof prescribed */
+    assert_int_equal(ffc_nts_rows(&p, &law, fixed, 3, nd, 64, Bi, Bj, Bv, Fv, 9, c, &nt, &nr), FFC_OK);
+    fixed[3 * 5 + 1] = 1;     /* node 5: y prescribed */
+    assert_int_equal(ffc_nts_rows(&p, &law, fixed, 3, nd, 64, Bi, Bj, Bv, Fv, 9, c, &nt, &nr),
+                     FFC_ERR_FIXED_TANGENT);
+    assert_int_equal(nt, 2);
+    law.nu_s = law.nu_d = 0;
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, 3, nd), FFC_OK);   /* frictionless: sliding */
+    assert_int_equal(ffc_nts_rows(&p, &law, fixed, 3, nd, 64, Bi, Bj, Bv, Fv, 9, c, &nt, &nr), FFC_OK);
+}
+
 /* a node in a valley of the master (facets A: z = -0.1 x, x < 0, and B:
  * z = 0.1 x, x > 0) whose facet goes A -> B -> A keeps A: its gap is then
  * the distance to A's plane even where B is closer */
@@ -566,6 +595,7 @@ int main(void)
         cmocka_unit_test(test_transitions),
         cmocka_unit_test(test_slide_rows_fd),
         cmocka_unit_test(test_valley_freeze),
+        cmocka_unit_test(test_fixed_tangent),
         cmocka_unit_test(test_frictionless),
         cmocka_unit_test(test_chattering_guard),
         cmocka_unit_test(test_bad_input),
