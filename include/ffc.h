@@ -27,9 +27,7 @@ enum {
     FFC_ERR_VALUE = -12,          /* a parameter outside its admissible range */
     FFC_ERR_MEMORY = -13,         /* allocation failed */
     FFC_ERR_INVERTED = -14,       /* a facet turned inside out (normal reversed) */
-    FFC_ERR_SINGULAR = -15,       /* a linear system is singular (zero pivot) */
-    FFC_ERR_FIXED_TANGENT = -16   /* friction at a node whose tangential motion is
-                                     prescribed (node-to-surface) */
+    FFC_ERR_SINGULAR = -15        /* a linear system is singular (zero pivot) */
 };
 
 /* Human-readable text of a status code (static string, never NULL). */
@@ -537,6 +535,8 @@ typedef struct {
     double fn;         /* its normal part n_r . f, > 0 compressive (force) */
     long mfprev;       /* master facet before the last change of mf in this step, -1 for none */
     int frozen;        /* 1: mf is kept for the rest of the step (no search) */
+    int tfix;          /* prescribed tangential dof of the node (set by ffc_nts_rows):
+                          0 none, k + 1 for dof k, 4 for two or more */
 } ffc_nts_node;
 
 /* Summary of an update. */
@@ -587,11 +587,12 @@ int ffc_nts_locate(const ffc_pair *pair, const ffc_nts_law *law, const ffc_searc
  * NULL) are moved to c with the value in pair->u, and a row left empty
  * is dropped.  cap: capacity of the triplet arrays, ccap of c.
  * Writes *ntrip and *nrows (or the sizes needed with FFC_ERR_CAPACITY)
- * and each node's row and nr.  With friction, a contact node with a fixed
- * dof k in a tangential direction (|n_k| < 0.9, e.g. on a symmetry plane)
- * gives FFC_ERR_FIXED_TANGENT with *ntrip = its index in nodes[]: its
- * tangential rows would be (nearly) empty and the saddle-point system
- * singular. */
+ * and each node's row, nr and tfix.  With friction, a contact node whose
+ * slave dof k is fixed in a tangential direction (|n_k| < 0.9, e.g. on a
+ * symmetry plane) has no row along that direction t1 (e_k in the tangent
+ * plane: the support carries that force, and the row would be nearly
+ * empty); stick and slide act along t2 = n x t1 alone (Coulomb's law in
+ * one dimension); with two such dofs the node keeps its normal row only. */
 int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixed[],
                  long nn, ffc_nts_node nodes[], long cap, long Bi[], long Bj[],
                  double Bv[], double Fv[], long ccap, double c[], long *ntrip, long *nrows);

@@ -26,7 +26,6 @@ const char *ffc_strerror(int status)
     case FFC_ERR_MEMORY: return "out of memory";
     case FFC_ERR_INVERTED: return "inverted element (signed volume reversed or zero)";
     case FFC_ERR_SINGULAR: return "singular linear system (zero pivot)";
-    case FFC_ERR_FIXED_TANGENT: return "friction at a contact node whose tangential motion is prescribed";
     default: return "unknown status";
     }
 }

@@ -73,6 +73,7 @@ long ffc_nts_nodes(const ffc_pair *pair, long cap, ffc_nts_node out[], long *nee
         out[k].state = FFC_NTS_OPEN;
         out[k].mf = -1;
         out[k].mfprev = -1;
+        out[k].tfix = 0;
         out[k].row = -1;
     }
     free(v);
@@ -217,27 +218,46 @@ static void tangent_basis(const double n[3], double t1[3], double t2[3])
 
 /* Force directions w[r] of a node's rows (the columns of Bf): n, t1, t2
  * for a node in contact with friction (stick or slide), n alone without
- * friction; returns the number of rows. */
+ * friction or when both tangential directions are prescribed; with one
+ * prescribed dof k (tfix = k + 1) t1 is e_k in the tangent plane (its row
+ * is left out: the support carries that force) and t2 = n x t1.  Returns
+ * the number of directions. */
 static int force_dirs(const ffc_nts_law *law, const ffc_nts_node *d, const double n[3], double w[3][3])
 {
     memcpy(w[0], n, sizeof w[0]);
     if (d->state == FFC_NTS_OPEN) return 0;
-    if (d->state == FFC_NTS_SLIDE && !(law->nu_d > 0)) return 1;
-    tangent_basis(n, w[1], w[2]);
+    if ((d->state == FFC_NTS_SLIDE && !(law->nu_d > 0)) || d->tfix == 4) return 1;
+    if (d->tfix >= 1 && d->tfix <= 3) {
+        const int k = d->tfix - 1;
+        for (int i = 0; i < 3; i++) w[1][i] = (i == k) - n[k] * n[i];
+        const double l = sqrt(ffc__dot(w[1], w[1]));
+        for (int i = 0; i < 3; i++) w[1][i] /= l;
+        ffc__cross(n, w[1], w[2]);
+    } else {
+        tangent_basis(n, w[1], w[2]);
+    }
     return 3;
 }
 
 /* The sliding rows' point of linearization: p = m_t + s (length), the
  * tangential multiplier m_t = -F_t / scale of the last solve plus the slip
- * s since u^n, both in the tangent plane of n; mt = m_t, mu = max(F_n, 0)
- * / scale.  Returns |p|. */
-static double slide_point(const ffc_nts_law *law, const ffc_nts_node *d, const double n[3], double p[3],
-                          double mt[3], double *mu)
+ * s since u^n, both in the tangent plane of n (along t2 alone when t1 is
+ * prescribed, w the node's directions); mt = m_t, mu = max(F_n, 0) /
+ * scale.  Returns |p|. */
+static double slide_point(const ffc_nts_law *law, const ffc_nts_node *d, const double n[3],
+                          const double w[3][3], double p[3], double mt[3], double *mu)
 {
     const double fn = ffc__dot(d->f, n);
     for (int i = 0; i < 3; i++) mt[i] = -(d->f[i] - fn * n[i]) / law->scale;
     const double sn = ffc__dot(d->slip, n);
     for (int i = 0; i < 3; i++) p[i] = mt[i] + d->slip[i] - sn * n[i];
+    if (d->tfix >= 1 && d->tfix <= 3) {
+        const double a = ffc__dot(mt, w[2]), b = ffc__dot(p, w[2]);
+        for (int i = 0; i < 3; i++) {
+            mt[i] = a * w[2][i];
+            p[i] = b * w[2][i];
+        }
+    }
     *mu = fmax(fn, 0.0) / law->scale;
     return sqrt(ffc__dot(p, p));
 }
@@ -291,21 +311,20 @@ int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixe
             coef[a + 1] = -d->L[a];
         }
         memcpy(d->nr, d->n, sizeof d->nr);
+        /* prescribed tangential dofs of the slave node (|n_k| < 0.9: e.g. a
+         * symmetry plane): those directions get no row */
+        d->tfix = 0;
+        for (int i = 0; fixed && i < 3; i++)
+            if (fixed[3 * d->node + i] != 0 && fabs(d->n[i]) < 0.9) d->tfix = d->tfix ? 4 : i + 1;
         double v[3][3], w[3][3], Cm[3][3] = {{0}};
         const int nrow = force_dirs(law, d, d->n, w);
-        if (nrow == 3 && fixed)
-            for (int i = 0; i < 3; i++)
-                if (fixed[3 * d->node + i] != 0 && fabs(d->n[i]) < 0.9) {
-                    *ntrip = k;
-                    *nrows = 0;
-                    return FFC_ERR_FIXED_TANGENT;
-                }
+        const int skip1 = nrow == 3 && d->tfix >= 1 && d->tfix <= 3;
         memcpy(v, w, sizeof v);
         int sliding = 0;
         double extra[3] = {0, 0, 0};   /* t_a . (mb - nu_d mu ph) */
         if (nrow == 3 && d->state == FFC_NTS_SLIDE) {
             double p[3], mt[3], mu;
-            const double pn = slide_point(law, d, d->n, p, mt, &mu);
+            const double pn = slide_point(law, d, d->n, w, p, mt, &mu);
             if (pn > 0) {
                 sliding = 1;
                 const double bound = law->nu_d * mu, rho = fmax(pn, bound);
@@ -316,18 +335,20 @@ int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixe
                     d->dir[i] = p[i] / pn;
                     mb[i] = shrink * mt[i];
                 }
-                for (int a = 1; a < 3; a++) {
+                for (int a = 1 + skip1; a < 3; a++) {
                     const double ta_mb = ffc__dot(w[a], mb);
                     for (int i = 0; i < 3; i++) v[a][i] = -(bound * w[a][i] - d->dir[i] * ta_mb) / rho;
-                    for (int b = 1; b < 3; b++) Cm[a][b] = (a == b) + ffc__dot(w[b], v[a]);
+                    for (int b = 1 + skip1; b < 3; b++) Cm[a][b] = (a == b) + ffc__dot(w[b], v[a]);
                     Cm[a][0] = law->nu_d * ffc__dot(w[a], d->dir);
                     extra[a] = ta_mb - bound * ffc__dot(w[a], d->dir);
                 }
             }
         }
         const long row0 = nr;
+        const long ridx[3] = {row0, row0 + 1, row0 + 2 - skip1};   /* sliding rows' numbers */
         for (int r = 0; r < nrow; r++) {
             if (r > 0 && sliding && !(d->rmask & 1)) break;  /* no normal row: nothing to slide on */
+            if (r == 1 && skip1) continue;                      /* t1 prescribed */
             /* right-hand side: the gap closes (normal row) or no tangential
              * motion since u^n (tangent rows; the sliding rows' M s^n) */
             double rhs = 0.0;
@@ -357,12 +378,12 @@ int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixe
                 }
             if (sliding && r > 0) {
                 /* the multiplier block: columns ndof + row of the node's
-                 * normal and tangent multipliers (rows row0 .. row0 + 2) */
+                 * normal and tangent multipliers */
                 for (int b = 0; b < 3; b++) {
-                    if (Cm[r][b] == 0.0) continue;
+                    if (Cm[r][b] == 0.0 || (b == 1 && skip1)) continue;
                     if (nt < cap) {
                         Bi[nt] = nr;
-                        Bj[nt] = ndof + row0 + b;
+                        Bj[nt] = ndof + ridx[b];
                         Bv[nt] = sc * Cm[r][b];
                         Fv[nt] = 0.0;
                     }
@@ -479,7 +500,9 @@ int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn
              * residual |F_t + nu_d F_n q/|q|| measures how far the
              * Newton iterate is from Coulomb's law) */
             double p[3], mt[3], mu;
-            const double pn = slide_point(law, d, d->nr, p, mt, &mu);
+            double w[3][3];
+            force_dirs(law, d, d->nr, w);
+            const double pn = slide_point(law, d, d->nr, w, p, mt, &mu);
             if (!(pn > law->nu_d * mu) || pn == 0) next = FFC_NTS_STICK;
             else {
                 double r[3];

@@ -949,8 +949,8 @@ long ffcPointsF(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, 
 // Node table N (real[int,int], one row per slave node), columns in the
 // order of ffc_nts_node: node, area, state, flips, chatter, dir (3), master
 // facet, L (3), n (3), gap, slip (3), row, rmask, nr (3), f (3), fn,
-// previous facet, frozen.
-const long NTS_COLS = 30;
+// previous facet, frozen, prescribed tangential dof.
+const long NTS_COLS = 31;
 
 void nts_to_row(const ffc_nts_node &d, KNM<double> &N, long k)
 {
@@ -958,7 +958,8 @@ void nts_to_row(const ffc_nts_node &d, KNM<double> &N, long k)
                                 d.dir[0], d.dir[1], d.dir[2], (double)d.mf, d.L[0], d.L[1], d.L[2],
                                 d.n[0], d.n[1], d.n[2], d.gap, d.slip[0], d.slip[1], d.slip[2],
                                 (double)d.row, (double)d.rmask, d.nr[0], d.nr[1], d.nr[2],
-                                d.f[0], d.f[1], d.f[2], d.fn, (double)d.mfprev, (double)d.frozen};
+                                d.f[0], d.f[1], d.f[2], d.fn, (double)d.mfprev, (double)d.frozen,
+                                (double)d.tfix};
     for (long j = 0; j < NTS_COLS; j++) N(k, j) = v[j];
 }
 
@@ -972,7 +973,7 @@ void nts_from_row(const KNM<double> &N, long k, ffc_nts_node &d)
         d.nr[i] = v[21 + i]; d.f[i] = v[24 + i];
     }
     d.mf = (long)v[8]; d.gap = v[15]; d.row = (long)v[19]; d.rmask = (int)v[20]; d.fn = v[27];
-    d.mfprev = (long)v[28]; d.frozen = (int)v[29];
+    d.mfprev = (long)v[28]; d.frozen = (int)v[29]; d.tfix = (int)v[30];
 }
 
 // Options opt (real[int]): [nu_s (static friction, >= 0), nu_d (dynamic,
@@ -1060,7 +1061,8 @@ void need_nts_table(const char *fn, KNM<double> *N, NtsCall &c)
         nts_from_row(*N, k, c.nodes[k]);
         const ffc_nts_node &d = c.nodes[k];
         if (d.node < 0 || d.node >= c.m.nv || d.state < 0 || d.state > 2 || d.mf < -1 || d.mf >= c.pair.nfm ||
-            d.mfprev < -1 || d.mfprev >= c.pair.nfm || (d.frozen != 0 && d.frozen != 1)) {
+            d.mfprev < -1 || d.mfprev >= c.pair.nfm || (d.frozen != 0 && d.frozen != 1) ||
+            d.tfix < 0 || d.tfix > 4) {
             std::ostringstream s;
             s << "argument 'N': row " << k << " (node " << (*N)(k, 0L) << ", state " << (*N)(k, 2L)
               << ", master facet " << (*N)(k, 8L) << ") is not a node of this pair (make N with ffcNTSNodes)";
@@ -1126,16 +1128,8 @@ long ffcNTSRows(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, 
     nts_locate(fn, c, 0);
     const long nn = (long)c.nodes.size();
     long nt = 0, nr = 0;
-    int st0 = ffc_nts_rows(&c.pair, &c.law, &(*fixed)[0], nn, c.nodes.data(), 0, nullptr, nullptr, nullptr,
-                           nullptr, 0, nullptr, &nt, &nr);
-    if (st0 == FFC_ERR_FIXED_TANGENT) {
-        std::ostringstream s;
-        s << "argument 'fixed': slave node " << c.nodes[nt].node << " is in contact with friction (nuS = "
-          << num(c.law.nu_s) << ") but has a prescribed displacement along the contact surface (e.g. a symmetry "
-          << "plane); node-to-surface friction needs free tangential motion there (use the augmented Lagrangian, "
-          << "or nuS = 0)";
-        fail(fn, s.str());
-    }
+    ffc_nts_rows(&c.pair, &c.law, &(*fixed)[0], nn, c.nodes.data(), 0, nullptr, nullptr, nullptr, nullptr, 0,
+                 nullptr, &nt, &nr);
     std::vector<long> Bi(nt + 1), Bj(nt + 1);
     std::vector<double> Bv(nt + 1), Fv(nt + 1), rhs(nr + 1);
     int st = ffc_nts_rows(&c.pair, &c.law, &(*fixed)[0], nn, c.nodes.data(), nt, Bi.data(), Bj.data(), Bv.data(),

@@ -12,7 +12,8 @@
 # Knob "solver": the linear solver at h_c = 0.025 (auto = CHOLMOD for this
 # symmetric scene; UMFPACK; MUMPS; reduced = the bulk matrix factorized once,
 # contact on the reduced system of its dofs).
-# Friction: the sliding block (also with node-to-surface) and Cattaneo-Mindlin with the direct path
+# Friction: the sliding block and Cattaneo-Mindlin with node-to-surface and, for the
+# augmented Lagrangian, with the direct path
 # (auto: UMFPACK, one factorization per Newton system) and the reduced one:
 #   results/study-friction.csv     one row per run (error, iterations, time split)
 #   results/study-friction.png     wall time of both paths
@@ -127,6 +128,8 @@ frun() {   # frun <case> <label> <h> <error field (max over the file)> <args...>
 }
 # node-to-surface (exact constraints, UMFPACK on the saddle-point system)
 frun sliding-block "sb-nts" 0.15 err_plateau -method nts
+frun cattaneo-mindlin "cm-hc0.1-nts" 0.1 err_c_over_h -hc 0.1 -method nts
+[ "$mode" = quick ] || frun cattaneo-mindlin "cm-hc0.05-nts" 0.05 err_c_over_h -hc 0.05 -method nts
 for sv in auto reduced; do
     frun sliding-block "sb-$sv" 0.15 err_plateau -solver $sv
     frun cattaneo-mindlin "cm-hc0.1-$sv" 0.1 err_c_over_h -hc 0.1 -solver $sv

@@ -402,33 +402,64 @@ static void test_slide_rows_fd(void **state)
     check_slide_rows(outside, 0);
 }
 
-/* friction at a contact node with a prescribed tangential dof: an error
- * naming the node (its rows would be empty); a prescribed normal dof or no
- * friction is fine */
+/* friction at a contact node with a prescribed tangential dof (a symmetry
+ * plane): no row along that direction t1, stick and slide along t2 = n x t1
+ * alone (Coulomb in one dimension: the sliding row's residual at its point
+ * of linearization is scale Phi_2, Phi_2 = m_2 - nu_d mu sign(p_2)) */
 static void test_fixed_tangent(void **state)
 {
     (void)state;
     double X[6 * 3] = {-5, -5, 0, 5, -5, 0, 0, 5, 0, 0, 0, 0, 0, 1, 0, 1, 0, 0};
     long Fm[3] = {0, 1, 2}, Fs[3] = {3, 4, 5};
-    double u[18], fixed[18];
+    double u[18], up[18], fixed[18];
     memset(u, 0, sizeof u);
+    memset(up, 0, sizeof up);
     memset(fixed, 0, sizeof fixed);
-    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, u, NULL};
+    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, up, NULL};
     ffc_nts_law law = {0.5, 0.4, 1e-12, 1e-9, 20, 2.0};
     ffc_nts_node nd[3];
     long need, Bi[64], Bj[64], nt, nr;
     double Bv[64], Fv[64], c[9];
     assert_int_equal(ffc_nts_nodes(&p, 3, nd, &need), 3);
     assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, 3, nd), FFC_OK);
-    fixed[3 * 4 + 2] = 1;     /* node 4: normal dof prescribed */
+    fixed[3 * 4 + 2] = 1;     /* node 4: normal dof prescribed: all rows */
+    fixed[3 * 5 + 1] = 1;     /* node 5: y prescribed: no row along y */
     assert_int_equal(ffc_nts_rows(&p, &law, fixed, 3, nd, 64, Bi, Bj, Bv, Fv, 9, c, &nt, &nr), FFC_OK);
-    fixed[3 * 5 + 1] = 1;     /* node 5: y prescribed */
-    assert_int_equal(ffc_nts_rows(&p, &law, fixed, 3, nd, 64, Bi, Bj, Bv, Fv, 9, c, &nt, &nr),
-                     FFC_ERR_FIXED_TANGENT);
-    assert_int_equal(nt, 2);
-    law.nu_s = law.nu_d = 0;
-    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, 3, nd), FFC_OK);   /* frictionless: sliding */
+    assert_int_equal(nr, 3 + 3 + 2);
+    assert_int_equal(nd[1].tfix, 0);
+    assert_int_equal(nd[2].tfix, 2);
+    assert_int_equal(nd[2].rmask, 1 | 4);
+    /* node 5's tangential row: t2 = n x e_y = (-1, 0, 0) */
+    for (long t = 0; t < nt; t++)
+        if (Bi[t] == 7 && Bj[t] < 18 && Bj[t] / 3 == 5) {
+            assert_close(Fv[t], Bj[t] % 3 == 0 ? -law.scale : 0, 1e-15);
+        }
+    /* sliding along x: F_t = (6, 0, 0) outside the disc nu_d F_n = 4, slip
+     * (-1, 0, 0) since up: one sliding row with its C entries */
+    nd[2].state = FFC_NTS_SLIDE;
+    up[3 * 5] = 1.0;
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 0, 3, nd), FFC_OK);
+    nd[2].f[0] = 6;
+    nd[2].f[2] = 10;
     assert_int_equal(ffc_nts_rows(&p, &law, fixed, 3, nd, 64, Bi, Bj, Bv, Fv, 9, c, &nt, &nr), FFC_OK);
+    assert_int_equal(nr, 8);
+    const double m0[2] = {-10 / law.scale, 6 / law.scale};   /* m_n; m_2 (F_t = -scale m_2 t2) */
+    double res = -c[7];
+    int ncol = 0;
+    for (long t = 0; t < nt; t++) {
+        if (Bi[t] != 7) continue;
+        if (Bj[t] >= 18) {
+            assert_true(Bj[t] - 18 == 6 || Bj[t] - 18 == 7);   /* its own normal and tangent multipliers */
+            res += Bv[t] * m0[Bj[t] - 18 - 6];
+            ncol++;
+        } else {
+            res += Bv[t] * u[Bj[t]];
+        }
+    }
+    assert_int_equal(ncol, 2);
+    /* p_2 = m_2 + s_2 = 3 + 1 (s = -1 along x = +1 along t2) > 0 */
+    const double phi = m0[1] - law.nu_d * (-m0[0]);
+    assert_close(res, law.scale * phi, 1e-13);
 }
 
 /* a node in a valley of the master (facets A: z = -0.1 x, x < 0, and B:
