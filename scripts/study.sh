@@ -16,7 +16,7 @@
 # augmented Lagrangian, with the direct path
 # (auto: UMFPACK, one factorization per Newton system) and the reduced one:
 #   results/study-friction.csv     one row per run (error, iterations, time split)
-#   results/study-friction.png     wall time of both paths
+#   results/study-friction.png     wall time of both paths and of node-to-surface
 # Usage: sh scripts/study.sh [quick | plots | friction]   (plots: redraw from
 # results/study.csv; friction: only the friction cases, then all plots)
 cd "$(dirname "$0")/.." || exit 2
