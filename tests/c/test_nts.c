@@ -176,21 +176,46 @@ static void test_rows_geometry(void **state)
 
 /* One slave node over one big master facet, driven through open -> stick
  * -> slide -> stick -> release by scripted displacements and multipliers. */
+/* One master facet (nodes 0, 1, 2) and one slave facet (3, 4, 5) at X,
+ * zero displacements, the law of the friction tests; the slave nodes made
+ * (not yet located: set up[] first where the slip matters). */
+typedef struct {
+    double X[18], u[18], up[18];
+    long Fm[3], Fs[3];
+    ffc_pair p;
+    ffc_nts_law law;
+    ffc_nts_node nd[3];
+} one_facet;
+
+static void one_facet_init(one_facet *f, const double X[18])
+{
+    memcpy(f->X, X, sizeof f->X);
+    memset(f->u, 0, sizeof f->u);
+    memset(f->up, 0, sizeof f->up);
+    for (int a = 0; a < 3; a++) {
+        f->Fm[a] = a;
+        f->Fs[a] = 3 + a;
+    }
+    ffc_pair q = {3, 1, f->Fs, 3, 1, f->Fm, 6, f->X, f->u, f->up, NULL};
+    ffc_nts_law l = {0.5, 0.4, 1e-12, 1e-9, 20, 2.0};
+    f->p = q;
+    f->law = l;
+    long need;
+    assert_int_equal(ffc_nts_nodes(&f->p, 3, f->nd, &need), 3);
+}
+
 static void test_transitions(void **state)
 {
     (void)state;
     /* master facet nodes 0, 1, 2 (z = 0, normal +z); slave facet nodes 3, 4, 5 above,
      * normal down */
-    double X[6 * 3] = {-5, -5, 0, 5, -5, 0, 0, 5, 0, 0, 0, 0.1, 0, 1, 0.1, 1, 0, 0.1};
-    long Fm[3] = {0, 1, 2}, Fs[3] = {3, 4, 5};
-    double u[18], up[18];
-    memset(u, 0, sizeof u);
-    memset(up, 0, sizeof up);
-    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, up, NULL};
-    ffc_nts_law law = {0.5, 0.4, 1e-12, 1e-9, 20, 2.0};
-    ffc_nts_node nd[3];
-    long need;
-    assert_int_equal(ffc_nts_nodes(&p, 3, nd, &need), 3);
+    const double X0[6 * 3] = {-5, -5, 0, 5, -5, 0, 0, 5, 0, 0, 0, 0.1, 0, 1, 0.1, 1, 0, 0.1};
+    one_facet f;
+    one_facet_init(&f, X0);
+    double *X = f.X, *u = f.u, *up = f.up;
+    ffc_pair p = f.p;
+    ffc_nts_law law = f.law;
+    ffc_nts_node *nd = f.nd;
     assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, 3, nd), FFC_OK);
     ffc_nts_node *c = &nd[0];   /* node 3 */
     assert_int_equal(c->state, FFC_NTS_OPEN);
@@ -331,19 +356,17 @@ static double slide_phi(int a, const double t[3][3], double nu, const double up[
 
 static void check_slide_rows(const double mt_force[2], int exact)
 {
-    double X[6 * 3] = {-1, -1, 0, 2, -1, 0, 0, 2, 0, 0.1, 0.1, 0, 0.1, 1.1, 0, 1.1, 0.1, 0};
-    long Fm[3] = {0, 1, 2}, Fs[3] = {3, 4, 5};
-    double u[18], up[18];
-    memset(u, 0, sizeof u);
-    memset(up, 0, sizeof up);
+    const double X0[6 * 3] = {-1, -1, 0, 2, -1, 0, 0, 2, 0, 0.1, 0.1, 0, 0.1, 1.1, 0, 1.1, 0.1, 0};
+    one_facet f;
+    one_facet_init(&f, X0);
+    double *u = f.u, *up = f.up;
     up[9] = 1.0;        /* slip s = u_c - up_c = (-1, 1, 0) */
     up[10] = -1.0;
-    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, up, NULL};
-    ffc_nts_law law = {0.5, 0.4, 1e-12, 1e-9, 20, 2.0};
-    ffc_nts_node nd[3];
-    long need, Bi[64], Bj[64], nt, nr;
+    ffc_pair p = f.p;
+    ffc_nts_law law = f.law;
+    ffc_nts_node *nd = f.nd;
+    long Bi[64], Bj[64], nt, nr;
     double Bv[64], Fv[64], c[9];
-    assert_int_equal(ffc_nts_nodes(&p, 3, nd, &need), 3);
     assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, 3, nd), FFC_OK);
     nd[0].state = FFC_NTS_SLIDE;
     nd[1].state = nd[2].state = FFC_NTS_OPEN;
@@ -409,18 +432,16 @@ static void test_slide_rows_fd(void **state)
 static void test_fixed_tangent(void **state)
 {
     (void)state;
-    double X[6 * 3] = {-5, -5, 0, 5, -5, 0, 0, 5, 0, 0, 0, 0, 0, 1, 0, 1, 0, 0};
-    long Fm[3] = {0, 1, 2}, Fs[3] = {3, 4, 5};
-    double u[18], up[18], fixed[18];
-    memset(u, 0, sizeof u);
-    memset(up, 0, sizeof up);
+    const double X0[6 * 3] = {-5, -5, 0, 5, -5, 0, 0, 5, 0, 0, 0, 0, 0, 1, 0, 1, 0, 0};
+    one_facet f;
+    one_facet_init(&f, X0);
+    double *u = f.u, *up = f.up, fixed[18];
     memset(fixed, 0, sizeof fixed);
-    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, up, NULL};
-    ffc_nts_law law = {0.5, 0.4, 1e-12, 1e-9, 20, 2.0};
-    ffc_nts_node nd[3];
-    long need, Bi[64], Bj[64], nt, nr;
+    ffc_pair p = f.p;
+    ffc_nts_law law = f.law;
+    ffc_nts_node *nd = f.nd;
+    long Bi[64], Bj[64], nt, nr;
     double Bv[64], Fv[64], c[9];
-    assert_int_equal(ffc_nts_nodes(&p, 3, nd, &need), 3);
     assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, 3, nd), FFC_OK);
     fixed[3 * 4 + 2] = 1;     /* node 4: normal dof prescribed: all rows */
     fixed[3 * 5 + 1] = 1;     /* node 5: y prescribed: no row along y */
