@@ -574,7 +574,10 @@ long ffc_nts_nodes(const ffc_pair *pair, long cap, ffc_nts_node out[], long *nee
  * valley of the master between two facets, and one facet's constraint
  * puts it into the other) is frozen: it keeps that facet, projected onto
  * it (onto its boundary when the foot is outside), until the caller
- * clears frozen and mfprev (at the next load step).  With init != 0 the
+ * clears frozen and mfprev (at the next load step).  A contact node the
+ * search leaves without a partner keeps its facet when its foot lies past
+ * the master's rim by no more than its distance |g| to the facet's plane
+ * (a node held in a symmetry plane that cuts the master at its rim).  With init != 0 the
  * state is also set: contact (stick if law->nu_s > 0, else slide) when
  * g <= law->gtol, open otherwise. */
 int ffc_nts_locate(const ffc_pair *pair, const ffc_nts_law *law, const ffc_search_opts *o,

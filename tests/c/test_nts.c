@@ -521,6 +521,34 @@ static void test_valley_freeze(void **state)
     assert_int_equal(nd[0].frozen, 0);
 }
 
+/* a contact node held in a plane that cuts the master at its rim (a
+ * symmetry plane): slightly above a tilted facet its foot lies past the
+ * rim by less than its gap, and it keeps its facet; farther past the rim
+ * it has no partner */
+static void test_rim_keep(void **state)
+{
+    (void)state;
+    double X[6 * 3] = {-1, 0, 0, 2, 0, 0, 0, 2, -0.2, 0.5, 0, 0, 0.5, 0.5, 1, 1, 0.3, 1};
+    long Fm[3] = {0, 1, 2}, Fs[3] = {3, 4, 5};
+    double u[18];
+    memset(u, 0, sizeof u);
+    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, NULL, NULL};
+    ffc_nts_law law = {0, 0, 1e-12, 1e-9, 8, 1.0};
+    ffc_nts_node nd[3];
+    long need;
+    assert_int_equal(ffc_nts_nodes(&p, 3, nd, &need), 3);
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, 3, nd), FFC_OK);
+    assert_int_equal(nd[0].state, FFC_NTS_SLIDE);
+    assert_int_equal(nd[0].mf, 0);
+    u[3 * 3 + 2] = 1e-3;       /* lifted: the foot 1e-4 past the rim y = 0 */
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 0, 3, nd), FFC_OK);
+    assert_int_equal(nd[0].mf, 0);
+    assert_close(nd[0].gap, 1e-3 / sqrt(1.01), 1e-15);
+    u[3 * 3 + 1] = -0.1;       /* 0.1 past the rim: no partner */
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 0, 3, nd), FFC_OK);
+    assert_int_equal(nd[0].mf, -1);
+}
+
 /* frictionless: contact nodes slide, one row each, B == Bf (symmetric) */
 static void test_frictionless(void **state)
 {
@@ -647,6 +675,7 @@ int main(void)
         cmocka_unit_test(test_transitions),
         cmocka_unit_test(test_slide_rows_fd),
         cmocka_unit_test(test_valley_freeze),
+        cmocka_unit_test(test_rim_keep),
         cmocka_unit_test(test_fixed_tangent),
         cmocka_unit_test(test_frictionless),
         cmocka_unit_test(test_chattering_guard),
