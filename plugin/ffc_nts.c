@@ -137,31 +137,16 @@ int ffc_nts_locate(const ffc_pair *pair, const ffc_nts_law *law, const ffc_searc
             d->frozen = 0;
         }
         const long mfold = d->mf;
-        if (d->frozen && mfold >= 0 && mfold < pair->nfm) {
-            /* the kept facet, projected onto (clamped to its boundary) */
+        /* the node's facet kept: frozen, or a contact node the search left
+         * without a partner at the rim of the master, past it in the
+         * tangent plane by no more than its distance |g| to the facet's
+         * plane (a node held in a symmetry plane that cuts the master: a
+         * tilted facet puts its foot up to |g| past the rim, on either
+         * side) */
+        const int rim = !init && d->state != FFC_NTS_OPEN && lk[k].mf < 0;
+        if ((d->frozen || rim) && mfold >= 0 && mfold < pair->nfm) {
             double Xm[3][3];
             ffc_proj pr;
-            for (int a = 0; a < 3; a++)
-                for (int i = 0; i < 3; i++) Xm[a][i] = x[3 * pair->Fm[3 * mfold + a] + i];
-            if (ffc_project(3, (const double(*)[3])Xm, p + 3 * k, &pr) < 0) {
-                free(x);
-                free(lk);
-                return FFC_ERR_DEGENERATE;
-            }
-            lk[k].mf = mfold;
-            lk[k].xm[0] = pr.xi[0];
-            lk[k].xm[1] = pr.xi[1];
-            lk[k].gap = pr.gap;
-            for (int i = 0; i < 3; i++) lk[k].n[i] = pr.n[i];
-        } else if (!init && d->state != FFC_NTS_OPEN && mfold >= 0 && mfold < pair->nfm && lk[k].mf < 0) {
-            /* a contact node the search left without a partner: at the rim
-             * of the master, past it in the tangent plane by no more than
-             * its distance |g| to the facet's plane (a node held in a
-             * symmetry plane that cuts the master: a tilted facet puts its
-             * foot up to |g| past the rim, on either side), it keeps its
-             * facet */
-            ffc_proj pr;
-            double Xm[3][3];
             for (int a = 0; a < 3; a++)
                 for (int i = 0; i < 3; i++) Xm[a][i] = x[3 * pair->Fm[3 * mfold + a] + i];
             if (ffc_project(3, (const double(*)[3])Xm, p + 3 * k, &pr) < 0) {
@@ -170,7 +155,7 @@ int ffc_nts_locate(const ffc_pair *pair, const ffc_nts_law *law, const ffc_searc
                 return FFC_ERR_DEGENERATE;
             }
             const double over2 = pr.dist * pr.dist - pr.gap * pr.gap;
-            if (!(over2 > 0) || sqrt(over2) <= fabs(pr.gap)) {
+            if (d->frozen || !(over2 > 0) || sqrt(over2) <= fabs(pr.gap)) {
                 lk[k].mf = mfold;
                 lk[k].xm[0] = pr.xi[0];
                 lk[k].xm[1] = pr.xi[1];

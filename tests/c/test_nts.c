@@ -528,15 +528,14 @@ static void test_valley_freeze(void **state)
 static void test_rim_keep(void **state)
 {
     (void)state;
-    double X[6 * 3] = {-1, 0, 0, 2, 0, 0, 0, 2, -0.2, 0.5, 0, 0, 0.5, 0.5, 1, 1, 0.3, 1};
-    long Fm[3] = {0, 1, 2}, Fs[3] = {3, 4, 5};
-    double u[18];
-    memset(u, 0, sizeof u);
-    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, NULL, NULL};
-    ffc_nts_law law = {0, 0, 1e-12, 1e-9, 8, 1.0};
-    ffc_nts_node nd[3];
-    long need;
-    assert_int_equal(ffc_nts_nodes(&p, 3, nd, &need), 3);
+    const double X0[6 * 3] = {-1, 0, 0, 2, 0, 0, 0, 2, -0.2, 0.5, 0, 0, 0.5, 0.5, 1, 1, 0.3, 1};
+    one_facet f;
+    one_facet_init(&f, X0);
+    double *u = f.u;
+    ffc_pair p = f.p;
+    ffc_nts_law law = f.law;
+    law.nu_s = law.nu_d = 0;
+    ffc_nts_node *nd = f.nd;
     assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, 3, nd), FFC_OK);
     assert_int_equal(nd[0].state, FFC_NTS_SLIDE);
     assert_int_equal(nd[0].mf, 0);
