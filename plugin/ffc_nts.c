@@ -163,12 +163,8 @@ int ffc_nts_locate(const ffc_pair *pair, const ffc_nts_law *law, const ffc_searc
                 for (int i = 0; i < 3; i++) lk[k].n[i] = pr.n[i];
             }
         } else if (!init && d->state != FFC_NTS_OPEN && mfold >= 0 && lk[k].mf >= 0 && lk[k].mf != mfold) {
-            if (lk[k].mf == d->mfprev) {
-                d->frozen = 1;      /* back to the facet before: keep it */
-                d->mfprev = mfold;
-            } else {
-                d->mfprev = mfold;
-            }
+            if (lk[k].mf == d->mfprev) d->frozen = 1;   /* back to the facet before: keep it */
+            d->mfprev = mfold;
         }
         d->mf = lk[k].mf;
         d->gap = 0.0;
