@@ -418,6 +418,9 @@ typedef struct {
     double force_t[3]; /* friction: total friction force on the slave side (force) */
     double dissipation; /* friction: sum over points of da T . r, the work
                           dissipated by slip since the last converged step (force*length) */
+    double max_slip;   /* friction: largest tangential slip |r_T| of a pressed point (pointwise
+                          law) or slave node (nodal law, weighted slip) since the last converged
+                          step (length; dynamic: dt |v_rel,T|) */
 } ffc_stats;
 
 /* Adds the contact residual of all links into R[3nv] and writes the
@@ -437,8 +440,10 @@ int ffc_assemble(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
 
 /* Uzawa update: pointwise lambda_q <- <lambda_q - eps g_q> (0 without a
  * partner), or nodal lambda_a <- <lambda_a - eps g_a> with the weighted
- * gap g_a = sum_q N_a da g / sum_q N_a da over linked points (0 at nodes
- * without linked points); stats->max_dlam measures the change.  With
+ * gap g_a = sum_q N_a da g / sum_q N_a da over linked points (0 at slave
+ * nodes without linked points; the entries of nodes that are not slave
+ * nodes of this pair are left as they are, so pairs may share lambda);
+ * stats->max_dlam measures the change.  With
  * friction, lam_t <- T of each node or link (0 where t_N = 0), evaluated
  * with the pressures before the normal update; stats->max_dlam_t. */
 int ffc_augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
@@ -465,6 +470,120 @@ int ffc_points_vtk(const char *path, long n, const double P[]);
  * FFC_ERR_VALUE if the file cannot be written. */
 int ffc_write_columns(const char *path, const char *header, long n, int ncol,
                       const double A[], const double mask[]);
+
+/* ----------------------------------------------------------------- scenes */
+/* A contact scene: the nodes of one mesh (reference positions, and the
+ * tetrahedra for the inversion check) and any number of contact pairs.
+ * Each pair owns its slave and master facets, its search tree (built at
+ * the first search, refitted at the next ones), its links, its
+ * multipliers (never touched by another pair), their checkpoint at the
+ * last commit, and its statistics.  The scene owns its memory; nothing is
+ * global.  A pair with mu = 0 computes no friction term; the scene's
+ * dynamic and finite_def effects apply to every pair. */
+typedef struct ffc_scene ffc_scene;
+
+enum { FFC_METHOD_AL = 0 };    /* surface-to-surface augmented Lagrangian */
+enum {
+    FFC_TANGENT_NONE = 0,       /* residual only */
+    FFC_TANGENT_CONSISTENT = 1, /* exact derivative of the residual */
+    FFC_TANGENT_MATERIAL = 2    /* without the geometric terms (see ffc_law.material_only) */
+};
+
+/* A pair's method, law and search options. */
+typedef struct {
+    int method;        /* FFC_METHOD_* */
+    int qdeg;          /* quadrature degree on slave facets (1..6) */
+    int nodal;         /* 1: multipliers at slave nodes, 0: at quadrature points */
+    double mu;         /* Coulomb coefficient (1), >= 0; 0: frictionless */
+    double eps_n;      /* normal penalty (force/length^3), > 0 */
+    double eps_t;      /* tangential penalty (force/length^3; dynamic: force*time/length^3),
+                          >= 0; 0: eps_n (dynamic: eps_n dt) */
+    ffc_search_opts search; /* capture distances and edge tolerance */
+} ffc_pair_opts;
+
+/* Defaults: augmented Lagrangian, qdeg 4, nodal, mu 0, eps_n 0 (must be
+ * set), eps_t 0, ffc_search_defaults(). */
+ffc_pair_opts ffc_pair_defaults(void);
+
+/* FFC_OK, or FFC_ERR_VALUE / FFC_ERR_QUAD for an option out of range. */
+int ffc_pair_opts_check(const ffc_pair_opts *o);
+
+/* A scene over nv nodes at reference positions X[nv*3], facets of nper
+ * nodes (3 or 6), nt tetrahedra T[nt*4] (corner nodes; nt = 0: no
+ * inversion check).  *out is NULL on error. */
+int ffc_scene_create(int nper, long nv, const double X[], long nt, const long T[],
+                     const ffc_effects *effects, ffc_scene **out);
+void ffc_scene_free(ffc_scene *s);
+long ffc_scene_nodes(const ffc_scene *s);
+int ffc_scene_nper(const ffc_scene *s);
+int ffc_scene_npairs(const ffc_scene *s);
+int ffc_scene_effects(const ffc_scene *s, ffc_effects *fx);
+
+/* Adds the pair of slave facets Fs[nfs*nper] and master facets
+ * Fm[nfm*nper] (node indices; outward orientation) with options o;
+ * returns its index (>= 0) or an error (FFC_ERR_INDEX: *bad = the facet
+ * entry at fault). */
+int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const long Fm[],
+                       const ffc_pair_opts *o, long *bad);
+
+/* Options of pair k, and their change (a new qdeg or nodal setting
+ * resets that pair's links and multipliers). */
+int ffc_scene_pair_opts(const ffc_scene *s, int k, ffc_pair_opts *o);
+int ffc_scene_set_pair_opts(ffc_scene *s, int k, const ffc_pair_opts *o);
+
+/* Dynamic scenes: the velocities v[nv*3] at the end of the step, the
+ * step dt and the integrator's dv/du, read by the friction terms. */
+int ffc_scene_set_motion(ffc_scene *s, const double v[], double dt, double dvdu);
+
+/* Contact search of every pair at x = X + u[nv*3]; *linked (may be NULL)
+ * the number of linked points.  On error *bad is the pair (or the node
+ * with a non-finite position). */
+int ffc_scene_search(ffc_scene *s, const double u[], long *linked, long *bad);
+
+/* Adds the contact residual of every pair at u into R[nv*3] and, unless
+ * tangent is FFC_TANGENT_NONE, writes the tangent as triplets (Ti, Tj,
+ * Tv)[cap]; *ntrip the triplets written, or needed with FFC_ERR_CAPACITY
+ * (R is then incomplete: call again with room). */
+int ffc_scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], long cap, long Ti[], long Tj[],
+                       double Tv[], long *ntrip, long *bad);
+
+/* Uzawa update of every pair's multipliers at u (see ffc_augment). */
+int ffc_scene_augment(ffc_scene *s, const double u[], long *bad);
+
+/* A converged step: u becomes the friction history and the multipliers
+ * are checkpointed.  restore: back to the checkpoint (a step cut).
+ * reset: zero history, velocities, multipliers, links. */
+int ffc_scene_commit(ffc_scene *s, const double u[]);
+int ffc_scene_restore(ffc_scene *s);
+int ffc_scene_reset(ffc_scene *s);
+
+/* Statistic `name` of pair k (k = -1: all pairs, summed or the largest)
+ * from the last assembly (maxDlam, maxDlamT, maxPenNode: the last
+ * augmentation), or with step != 0 as they were at the last commit (the
+ * converged step: its slip and friction states, which an assembly after
+ * the commit no longer sees).  FFC_ERR_LABEL for a name that is not a
+ * statistic; ffc_scene_stat_name(i) lists them (NULL past the last). */
+int ffc_scene_stat(const ffc_scene *s, int pair, const char *name, int step, double *value);
+const char *ffc_scene_stat_name(int i);
+
+/* Links of pair k (k = -1: all pairs). */
+long ffc_scene_nlinks(const ffc_scene *s, int pair);
+
+/* ffc_points rows of pair k (k = -1: every pair in order) into
+ * P[cap*FFC_POINT_COLS]; *n the rows (needed, with FFC_ERR_CAPACITY). */
+int ffc_scene_points(const ffc_scene *s, const double u[], int pair, long cap, double P[], long *n, long *bad);
+
+/* Copies of pair k's multipliers lam[nlam] and lam_t[3 nlam] (either may
+ * be NULL); *n = nlam (nodes for the nodal law, links otherwise). */
+int ffc_scene_multipliers(const ffc_scene *s, int pair, long cap, double lam[], double lam_t[], long *n);
+
+/* The contact mesh size of pair k (k = -1: all pairs): the smaller of
+ * the mean longest facet edge of its slave and of its master surface, in
+ * the reference configuration (length); FFC_ERR_EMPTY without pairs. */
+int ffc_scene_facet_size(const ffc_scene *s, int pair, double *h);
+
+/* ffc_volume_check of the scene's tetrahedra at X + u. */
+int ffc_scene_check_volume(const ffc_scene *s, const double u[], long *bad);
 
 /* ------------------------------------- node-to-surface Lagrange multipliers */
 /* Each slave node c is paired with the master facet (i, j, k) under it:

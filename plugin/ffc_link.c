@@ -404,6 +404,13 @@ static void stats_pressure(ffc_stats *s, double t, double da, const double n[3])
     for (int i = 0; i < 3; i++) s->force[i] += t * da * n[i];
 }
 
+/* |r - (r . n) n|: the tangential part of r for a unit n */
+static double tangential_norm(const double r[3], const double n[3])
+{
+    const double rn = ffc__dot(r, n), rt[3] = {r[0] - rn * n[0], r[1] - rn * n[1], r[2] - rn * n[2]};
+    return sqrt(ffc__dot(rt, rt));
+}
+
 /* an active point (pointwise law): pressure t, and its friction state */
 static void stats_active(ffc_stats *s, double t, const ffc_link_state *st, int fric)
 {
@@ -415,6 +422,8 @@ static void stats_active(ffc_stats *s, double t, const ffc_link_state *st, int f
     if (tt > s->max_tt) s->max_tt = tt;
     for (int i = 0; i < 3; i++) s->force_t[i] -= st->t[i] * st->da;
     s->dissipation += st->da * ffc__dot(st->t, st->slip);
+    const double rt = tangential_norm(st->slip, st->n);
+    if (rt > s->max_slip) s->max_slip = rt;
 }
 
 static void stats_add(ffc_stats *s, const ffc_link_state *st, int fric)
@@ -636,6 +645,8 @@ static int nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double 
                 const double tt = sqrt(ffc__dot(T->f.t, T->f.t));
                 if (tt > stats->max_tt) stats->max_tt = tt;
                 stats->dissipation += slip_scale(fx, law) * w->Wn[v] * ffc__dot(T->f.t, T->r);
+                const double rt = slip_scale(fx, law) * tangential_norm(T->r, T->n);
+                if (rt > stats->max_slip) stats->max_slip = rt;
             }
         }
     return FFC_OK;
@@ -919,7 +930,10 @@ int ffc_augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
             if (fric) nodal_point_traction(pair, &links[w.L[e].k], &w.L[e], w.T, Tq, &fs);
             nodal_point_stats(stats, t, &w.L[e], Tq);
         }
-        for (long v = 0; v < pair->nv; v++) {
+        /* the pair's slave nodes only: another pair may keep its multipliers
+           in the same array (a node visited twice changes nothing the second time) */
+        for (long a = 0; a < pair->nfs * pair->ns; a++) {
+            const long v = pair->Fs[a];
             double d = fabs(w.tn[v] - lambda[v]);
             if (d > stats->max_dlam) stats->max_dlam = d;
             lambda[v] = w.tn[v];

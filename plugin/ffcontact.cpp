@@ -4,6 +4,7 @@
 #include "AFunction_ext.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <array>
 #include <chrono>
 #include <map>
@@ -1459,8 +1460,704 @@ long ffcReducedSolve(KN<double> *const &G, KN<long> *const &rdof, Matrice_Creuse
     return m;
 }
 
+// ---------------------------------------------------------------------------
+// Contact scenes (script type ffcScene): a mesh's nodes and any number of
+// contact pairs with their own options, links, multipliers and history,
+// kept between calls (ffc_scene_*); options by name, statistics by name.
+
+namespace {
+
+// Named arguments of a call, each evaluated on demand (absent: the default).
+struct Named {
+    const basicAC_F0::name_and_type *names;
+    const Expression *e;
+    Stack s;
+    const char *fn;
+    bool has(int i) const { return e[i] != nullptr; }
+    double real(int i, double def) const { return e[i] ? GetAny<double>((*e[i])(s)) : def; }
+    long integer(int i, long def) const { return e[i] ? GetAny<long>((*e[i])(s)) : def; }
+    std::string str(int i, const std::string &def) const
+    {
+        if (!e[i]) return def;
+        string *p = GetAny<string *>((*e[i])(s));
+        return p ? *p : def;
+    }
+    KN<double> *array(int i) const { return e[i] ? GetAny<KN<double> *>((*e[i])(s)) : nullptr; }
+    const char *name(int i) const { return names[i].name; }
+};
+
+const int MAXNAMED = 16;
+
+// A script type's name in words (for messages).
+std::string type_word(aType t)
+{
+    if (t == atype<double>()) return "real";
+    if (t == atype<long>()) return "int";
+    if (t == atype<bool>()) return "bool";
+    if (t == atype<string *>()) return "string";
+    if (t == atype<KN<double> *>()) return "real[int]";
+    if (t == atype<KN<long> *>()) return "int[int]";
+    return t->name();
+}
+
+// A FreeFEM operator with positional arguments A... and the named ones of
+// a table (as FreeFEM's own plugins declare them): f(named, positional...).
+template <class R, class... A>
+class NamedOp : public OneOperator {
+public:
+    typedef R (*func)(const Named &, const A &...);
+
+private:
+    func f;
+    const char *fn;
+    basicAC_F0::name_and_type *names;
+    int nn;
+    class Code : public E_F0mps {
+    public:
+        func f;
+        const char *fn;
+        basicAC_F0::name_and_type *names;
+        Expression a[sizeof...(A)];
+        Expression nargs[MAXNAMED];
+        Code(func ff, const char *fname, basicAC_F0::name_and_type *nm, int n, const basicAC_F0 &args,
+             const Expression *e)
+            : f(ff), fn(fname), names(nm)
+        {
+            for (size_t i = 0; i < sizeof...(A); i++) a[i] = e[i];
+            for (int i = 0; i < MAXNAMED; i++) nargs[i] = nullptr;
+            args.SetNameParam(n, names, nargs);
+        }
+        template <size_t... I>
+        AnyType call(Stack s, std::index_sequence<I...>) const
+        {
+            Named nm{names, nargs, s, fn};
+            return SetAny<R>(f(nm, GetAny<A>((*a[I])(s))...));
+        }
+        AnyType operator()(Stack s) const { return call(s, std::index_sequence_for<A...>()); }
+    };
+
+public:
+    NamedOp(const char *fname, basicAC_F0::name_and_type *nm, int n, func ff)
+        : OneOperator(map_type[typeid(R).name()], ArrayOfaType(map_type[typeid(A).name()]..., false)), f(ff),
+          fn(fname), names(nm), nn(n)
+    {
+    }
+    E_F0 *code(const basicAC_F0 &args) const
+    {
+        // an unknown option, or one of the wrong type, named in the message
+        if (args.named_parameter)
+            for (const auto &kv : *args.named_parameter) {
+                int i = 0;
+                while (i < nn && strcmp(kv.first, names[i].name)) i++;
+                std::ostringstream s;
+                s << fn << ": ";
+                if (i == nn) {
+                    s << "unknown option '" << kv.first << "'; the options are:";
+                    for (int j = 0; j < nn; j++) s << " " << names[j].name;
+                    if (!nn) s << " none";
+                    CompileError(s.str());
+                }
+                const aType want = map_type[names[i].type->name()];
+                if (!want->CastingFrom(kv.second.left())) {
+                    s << "option '" << kv.first << "' takes a " << type_word(want) << " value";
+                    CompileError(s.str());
+                }
+            }
+        Expression e[sizeof...(A)];
+        for (size_t i = 0; i < sizeof...(A); i++) e[i] = t[i]->CastTo(args[i]);
+        return new Code(f, fn, names, nn, args, e);
+    }
+};
+
+// What a scene keeps besides the C scene: the mesh's arrays (labels and
+// faces for new pairs), its P2 numbering, and each pair's labels.
+struct SceneData {
+    ffc_scene *s = nullptr;
+    MeshArrays m;
+    P2Arrays p2;
+    int order = 1;          // 1: [P1,P1,P1], 2: [P2,P2,P2]
+    long nn = 0;            // nodes: vertices or P2 nodes
+    std::vector<std::string> labels; // per pair: "slave {..} / master {..}"
+    ~SceneData() { ffc_scene_free(s); }
+};
+
+} // namespace
+
+// The script type: a pointer to SceneData, set by ffcScene C(Th, ...).
+struct FFScene {
+    SceneData *d;
+    void init() { d = nullptr; }
+    void destroy()
+    {
+        delete d;
+        d = nullptr;
+    }
+};
+
+namespace {
+
+std::string labels_text(const KN<long> &l)
+{
+    std::ostringstream s;
+    s << "{";
+    for (long i = 0; i < l.N(); i++) s << (i ? ", " : "") << l[i];
+    s << "}";
+    return s.str();
+}
+
+SceneData &need_scene(const char *fn, FFScene *C)
+{
+    if (!C || !C->d || !C->d->s)
+        fail(fn, "argument 'C': the scene is not made: declare it with ffcScene C(Th) (or ffcScene C(Th, effects = ..., order = 2))");
+    return *C->d;
+}
+
+// u (argument 'u') of the scene's mesh: 3 values per node, finite, no
+// tetrahedron inverted.
+const double *need_scene_u(const char *fn, SceneData &d, KN<double> *u, const char *arg = "u")
+{
+    const std::string a = std::string("argument '") + arg + "': ";
+    if (!u) fail(fn, a + "array is not defined");
+    if (u->N() != 3 * d.nn) {
+        std::ostringstream s;
+        s << a << "size " << u->N() << ", expected " << 3 * d.nn << " = 3 x " << d.nn
+          << (d.order == 2 ? " P2 nodes" : " vertices") << " of the scene's mesh (is it the mesh the scene was made with?)";
+        fail(fn, s.str());
+    }
+    need_finite(fn, arg, u);
+    return &(*u)[0];
+}
+
+void need_not_inverted(const char *fn, SceneData &d, const double *u)
+{
+    long bad = -1;
+    if (ffc_scene_check_volume(d.s, u, &bad) == FFC_ERR_INVERTED) {
+        const long *T = d.m.T.data() + 4 * bad;
+        std::ostringstream s;
+        s << "argument 'u': tetrahedron " << bad << " (vertices " << T[0] << ", " << T[1] << ", " << T[2] << ", "
+          << T[3] << ") is inverted or collapsed by the displacement: did Newton diverge? (ffcInverted(C, u) tests this)";
+        fail(fn, s.str());
+    }
+}
+
+void scene_error(const char *fn, int st, long bad, const char *what)
+{
+    std::ostringstream s;
+    s << what << ": " << ffc_strerror(st);
+    if (bad >= 0) s << " (at " << bad << ")";
+    if (st == FFC_ERR_DEGENERATE) s << ": an inverted or collapsed facet; did Newton diverge?";
+    fail(fn, s.str());
+}
+
+// ffcScene C(Th, effects = 0, order = 1)
+basicAC_F0::name_and_type scene_names[] = {{"effects", &typeid(long)}, {"order", &typeid(long)}};
+
+FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh)
+{
+    const char *fn = "ffcScene";
+    const Mesh3 &Th = need_mesh(fn, pTh);
+    const long bits = nm.integer(0, 0), order = nm.integer(1, 1);
+    ffc_effects fx = need_effects(fn, bits);
+    if (order != 1 && order != 2) {
+        std::ostringstream s;
+        s << "argument 'order': " << order << " is not 1 ([P1,P1,P1] displacement) or 2 ([P2,P2,P2])";
+        fail(fn, s.str());
+    }
+    std::unique_ptr<SceneData> d(new SceneData);
+    mesh_arrays(Th, d->m);
+    if (d->m.nbe == 0) fail(fn, "argument 'Th': the mesh has no boundary faces");
+    d->order = (int)order;
+    const double *X = d->m.X.data();
+    std::vector<long> T = d->m.T;
+    d->nn = d->m.nv;
+    if (order == 2) {
+        p2_arrays(fn, d->m, d->p2);
+        d->nn = d->p2.nn;
+        X = d->p2.X2.data();
+        for (long k = 0; k < d->m.nt; k++)
+            for (int a = 0; a < 4; a++) T[4 * k + a] = d->p2.node[10 * k + a];
+    }
+    int st = ffc_scene_create(order == 2 ? 6 : 3, d->nn, X, d->m.nt, T.data(), &fx, &d->s);
+    if (st) scene_error(fn, st, -1, "the scene");
+    if (C->d) C->destroy();
+    C->d = d.release();
+    return C;
+}
+
+// The label list of a pair's side (argument arg): one label or an int[int].
+KN<long> side_labels(const char *fn, const char *arg, KN<long> *l)
+{
+    if (!l) fail(fn, std::string("argument '") + arg + "': array is not defined");
+    if (l->N() == 0) fail(fn, std::string("argument '") + arg + "': empty list of labels");
+    return *l;
+}
+
+// 6-node facets of the 3-vertex boundary facets F3 (P2 scenes).
+void p2_facets(const char *fn, const MeshArrays &m, const P2Arrays &p2, const KN<long> &F3, std::vector<long> &out)
+{
+    std::map<std::array<long, 3>, long> face;
+    for (long k = 0; k < m.nbe; k++) {
+        std::array<long, 3> key = {m.be[3 * k], m.be[3 * k + 1], m.be[3 * k + 2]};
+        std::sort(key.begin(), key.end());
+        face[key] = k;
+    }
+    const long nf = F3.N() / 3;
+    out.resize(6 * nf);
+    for (long f = 0; f < nf; f++) {
+        long v[3] = {F3[3 * f], F3[3 * f + 1], F3[3 * f + 2]};
+        std::array<long, 3> key = {v[0], v[1], v[2]};
+        std::sort(key.begin(), key.end());
+        const long k = face.at(key), t = m.betet[k];
+        int st = ffc_p2_face(&m.T[4 * t], &p2.node[10 * t], v, &out[6 * f]);
+        if (st) fail(fn, std::string("P2 face: ") + ffc_strerror(st));
+    }
+}
+
+// The pair options of the named arguments (from o, the current ones).
+enum { PO_METHOD, PO_MU, PO_EPSN, PO_EPST, PO_QDEG, PO_NODAL, PO_CREL, PO_CABS, PO_N };
+basicAC_F0::name_and_type pair_names[] = {
+    {"method", &typeid(string *)}, {"mu", &typeid(double)},   {"epsN", &typeid(double)}, {"epsT", &typeid(double)},
+    {"qdeg", &typeid(long)},       {"nodal", &typeid(long)},  {"crel", &typeid(double)}, {"cabs", &typeid(double)}};
+
+ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &d, ffc_pair_opts o)
+{
+    const std::string method = nm.str(PO_METHOD, "al");
+    if (method != "al") {
+        std::ostringstream s;
+        s << "argument 'method': \"" << method << "\" is not a method of scenes (\"al\": augmented Lagrangian)";
+        fail(fn, s.str());
+    }
+    o.method = FFC_METHOD_AL;
+    o.mu = nm.real(PO_MU, o.mu);
+    o.eps_n = nm.real(PO_EPSN, o.eps_n);
+    o.eps_t = nm.real(PO_EPST, o.eps_t);
+    o.qdeg = (int)nm.integer(PO_QDEG, o.qdeg);
+    o.nodal = (int)nm.integer(PO_NODAL, o.nodal);
+    o.search.capture_rel = nm.real(PO_CREL, o.search.capture_rel);
+    o.search.capture_abs = nm.real(PO_CABS, o.search.capture_abs);
+    if (!nm.has(PO_EPSN) && !(o.eps_n > 0))
+        fail(fn, "argument 'epsN': the normal penalty is required (e.g. epsN = contactPenalty(E, nu, h), or ffcAutoPenalty)");
+    auto bad = [&](int i, double v, const char *why) {
+        std::ostringstream s;
+        s << "argument '" << nm.name(i) << "': " << num(v) << " " << why;
+        fail(fn, s.str());
+    };
+    if (!(o.mu >= 0) || std::isinf(o.mu)) bad(PO_MU, o.mu, "must be finite and >= 0 (Coulomb coefficient)");
+    if (o.mu > 0) {
+        ffc_effects fx;
+        ffc_scene_effects(d.s, &fx);
+        if (!fx.friction)
+            bad(PO_MU, o.mu, "> 0, but the scene's effects have no friction: make it with ffcScene C(Th, effects = ffcFriction)");
+    }
+    if (!(o.eps_n > 0) || std::isinf(o.eps_n)) bad(PO_EPSN, o.eps_n, "must be finite and > 0 (normal penalty)");
+    if (!(o.eps_t >= 0) || std::isinf(o.eps_t)) bad(PO_EPST, o.eps_t, "must be finite and >= 0 (tangential penalty; 0: epsN)");
+    if (ffc_quad_size(o.qdeg) < 0) bad(PO_QDEG, o.qdeg, "is not a quadrature degree (1..6)");
+    if (o.nodal != 0 && o.nodal != 1) bad(PO_NODAL, o.nodal, "must be 1 (multipliers at slave nodes) or 0 (at quadrature points)");
+    if (!(o.search.capture_rel >= 0) || std::isinf(o.search.capture_rel)) bad(PO_CREL, o.search.capture_rel, "must be finite and >= 0");
+    if (!(o.search.capture_abs >= 0) || std::isinf(o.search.capture_abs)) bad(PO_CABS, o.search.capture_abs, "must be finite and >= 0");
+    return o;
+}
+
+// ffcAddPair(C, slaveLabs, masterLabs, method = "al", mu = 0, epsN, epsT = 0,
+// qdeg = 4, nodal = 1, crel = 2, cabs = 0): returns the pair's index.
+long addPair(const Named &nm, FFScene *const &C, KN<long> *const &sl, KN<long> *const &ml)
+{
+    const char *fn = "ffcAddPair";
+    SceneData &d = need_scene(fn, C);
+    KN<long> S = side_labels(fn, "slaveLabs", sl), M = side_labels(fn, "masterLabs", ml);
+    need_pair_labels(fn, &S, &M);
+    ffc_pair_opts o = named_pair_opts(fn, nm, d, ffc_pair_defaults());
+    // the facets, from the mesh as the scene was made
+    auto select = [&](const char *arg, const KN<long> &labs, std::vector<long> &F) {
+        std::vector<long> L(labs.N()), out(3 * d.m.nbe);
+        for (long i = 0; i < labs.N(); i++) L[i] = labs[i];
+        long bad = -1;
+        int st = ffc_surface_select(3, d.m.nbe, d.m.be.data(), d.m.belab.data(), d.m.beopp.data(), d.m.nv,
+                                    d.m.X.data(), (int)L.size(), L.data(), d.m.nbe, out.data(), &bad);
+        if (st < 0) {
+            std::ostringstream s;
+            if (st == FFC_ERR_LABEL)
+                s << "argument '" << arg << "': no boundary face carries label " << bad << "; labels present: " << labels_present(d.m);
+            else
+                s << "argument '" << arg << "': " << ffc_strerror(st) << " (face " << bad << ")";
+            fail(fn, s.str());
+        }
+        KN<long> F3(3 * (long)st);
+        for (long i = 0; i < 3 * (long)st; i++) F3[i] = out[i];
+        if (d.order == 2) p2_facets(fn, d.m, d.p2, F3, F);
+        else F.assign(out.begin(), out.begin() + 3 * (long)st);
+        return (long)st;
+    };
+    std::vector<long> Fs, Fm;
+    const long nfs = select("slaveLabs", S, Fs), nfm = select("masterLabs", M, Fm);
+    long bad = -1;
+    const int k = ffc_scene_add_pair(d.s, nfs, Fs.data(), nfm, Fm.data(), &o, &bad);
+    if (k < 0) scene_error(fn, k, bad, "the pair");
+    d.labels.push_back("slave " + labels_text(S) + " / master " + labels_text(M));
+    return k;
+}
+
+long addPairL(const Named &nm, FFScene *const &C, long const &s, long const &m)
+{
+    KN<long> S(1), M(1);
+    S[0] = s;
+    M[0] = m;
+    return addPair(nm, C, &S, &M);
+}
+
+// the pair index k (argument arg) of the scene; -1 allowed when all is set
+int need_pair_index(const char *fn, const SceneData &d, long k, bool all, const char *arg = "pair")
+{
+    const long np = ffc_scene_npairs(d.s);
+    if ((all && k == -1) || (k >= 0 && k < np)) return (int)k;
+    std::ostringstream s;
+    s << "argument '" << arg << "': " << k << " is not a pair of the scene (" << np << " pair" << (np == 1 ? "" : "s")
+      << ": 0.." << np - 1 << (all ? ", or -1 for all" : "") << ")";
+    fail(fn, s.str());
+}
+
+// ffcSetPair(C, k, mu = ..., epsN = ..., ...): changes pair k's options; returns k.
+long setPair(const Named &nm, FFScene *const &C, long const &k)
+{
+    const char *fn = "ffcSetPair";
+    SceneData &d = need_scene(fn, C);
+    const int p = need_pair_index(fn, d, k, false, "k");
+    ffc_pair_opts o;
+    ffc_scene_pair_opts(d.s, p, &o);
+    o = named_pair_opts(fn, nm, d, o);
+    int st = ffc_scene_set_pair_opts(d.s, p, &o);
+    if (st) scene_error(fn, st, -1, "the pair's options");
+    return k;
+}
+
+// ffcOption(C, k, name): pair k's option name ("mu", "epsN", "epsT", "qdeg",
+// "nodal", "crel", "cabs").
+double pairOption(const Named &, FFScene *const &C, long const &k, string *const &name)
+{
+    const char *fn = "ffcOption";
+    SceneData &d = need_scene(fn, C);
+    const int p = need_pair_index(fn, d, k, false, "k");
+    ffc_pair_opts o;
+    ffc_scene_pair_opts(d.s, p, &o);
+    const std::string n = name ? *name : "";
+    if (n == "mu") return o.mu;
+    if (n == "epsN") return o.eps_n;
+    if (n == "epsT") return o.eps_t;
+    if (n == "qdeg") return o.qdeg;
+    if (n == "nodal") return o.nodal;
+    if (n == "crel") return o.search.capture_rel;
+    if (n == "cabs") return o.search.capture_abs;
+    fail(fn, "argument 'name': \"" + n + "\" is not an option of a pair (mu, epsN, epsT, qdeg, nodal, crel, cabs)");
+}
+
+long nPairs(const Named &, FFScene *const &C) { return ffc_scene_npairs(need_scene("ffcPairs", C).s); }
+
+// ffcSearch(C, u): contact search of every pair at u; returns the linked points.
+long sceneSearch(const Named &, FFScene *const &C, KN<double> *const &u)
+{
+    const char *fn = "ffcSearch";
+    SceneData &d = need_scene(fn, C);
+    const double *pu = need_scene_u(fn, d, u);
+    need_not_inverted(fn, d, pu);
+    long linked = 0, bad = -1;
+    int st = ffc_scene_search(d.s, pu, &linked, &bad);
+    if (st) scene_error(fn, st, bad, "the search");
+    return linked;
+}
+
+// the dynamic named arguments v, dt, dvdu of an assembly
+enum { AS_TANGENT, AS_SYMMETRIC, AS_V, AS_DT, AS_DVDU, AS_N };
+basicAC_F0::name_and_type assemble_names[] = {{"tangent", &typeid(string *)},
+                                              {"symmetric", &typeid(long)},
+                                              {"v", &typeid(KN<double> *)},
+                                              {"dt", &typeid(double)},
+                                              {"dvdu", &typeid(double)}};
+
+void scene_motion(const char *fn, const Named &nm, SceneData &d, int iv, int idt, int idvdu)
+{
+    ffc_effects fx;
+    ffc_scene_effects(d.s, &fx);
+    const bool given = nm.has(iv) || nm.has(idt) || nm.has(idvdu);
+    if (!fx.dynamic) {
+        if (given) fail(fn, "arguments 'v', 'dt', 'dvdu': the scene is not dynamic (effects without ffcDynamic)");
+        return;
+    }
+    bool fric = false;
+    for (int k = 0; k < ffc_scene_npairs(d.s); k++) {
+        ffc_pair_opts o;
+        ffc_scene_pair_opts(d.s, k, &o);
+        fric = fric || o.mu > 0;
+    }
+    if (!fric && !given) return;
+    if (!nm.has(iv) || !nm.has(idt) || !nm.has(idvdu))
+        fail(fn, "arguments 'v', 'dt', 'dvdu': a dynamic scene with friction needs the velocity at the end of the step, the step and dv/du");
+    const double *v = need_scene_u(fn, d, nm.array(iv), "v");
+    const double dt = nm.real(idt, 0), dvdu = nm.real(idvdu, 0);
+    if (!(dt > 0) || std::isinf(dt)) fail(fn, "argument 'dt': " + num(dt) + " must be finite and > 0 (the time step)");
+    if (!(dvdu >= 0) || std::isinf(dvdu))
+        fail(fn, "argument 'dvdu': " + num(dvdu) + " must be finite and >= 0 (e.g. gamma / (beta dt) for Newmark)");
+    int st = ffc_scene_set_motion(d.s, v, dt, dvdu);
+    if (st) scene_error(fn, st, -1, "the motion");
+}
+
+// ffcAssemble(C, u, R, K, tangent = "consistent", symmetric = 0, [v, dt, dvdu]):
+// R = the contact residual at u (size 3 x nodes), K = its tangent
+// ("material": without the geometric terms); symmetric = 1 keeps the lower
+// triangle (CHOLMOD; frictionless small-strain scenes only). Returns the
+// active points. ffcResidual(C, u, R, [v, dt, dvdu]): R alone.
+long sceneAssembleImpl(const char *fn, const Named &nm, FFScene *C, KN<double> *u, KN<double> *R,
+                       Matrice_Creuse<double> *K)
+{
+    SceneData &d = need_scene(fn, C);
+    const double *pu = need_scene_u(fn, d, u);
+    need_not_inverted(fn, d, pu);
+    if (!R) fail(fn, "argument 'R': array is not defined");
+    const long n = 3 * d.nn;
+    int tangent = FFC_TANGENT_NONE;
+    bool lower = false;
+    if (K) {
+        const std::string t = nm.str(AS_TANGENT, "consistent");
+        if (t == "consistent") tangent = FFC_TANGENT_CONSISTENT;
+        else if (t == "material") tangent = FFC_TANGENT_MATERIAL;
+        else fail(fn, "argument 'tangent': \"" + t + "\" is not \"consistent\" or \"material\"");
+        const long sym = nm.integer(AS_SYMMETRIC, 0);
+        if (sym != 0 && sym != 1) {
+            std::ostringstream s;
+            s << "argument 'symmetric': " << sym << " must be 0 (full storage) or 1 (lower triangle, CHOLMOD)";
+            fail(fn, s.str());
+        }
+        lower = sym == 1;
+        if (lower) {
+            ffc_effects fx;
+            ffc_scene_effects(d.s, &fx);
+            for (int k = 0; k < ffc_scene_npairs(d.s); k++) {
+                ffc_pair_opts o;
+                ffc_scene_pair_opts(d.s, k, &o);
+                if (o.mu > 0) {
+                    std::ostringstream s;
+                    s << "argument 'symmetric': 1, but pair " << k << " has friction (mu = " << o.mu
+                      << "): its tangent is not symmetric";
+                    fail(fn, s.str());
+                }
+            }
+            if (fx.finite_def) fail(fn, "argument 'symmetric': 1, but the scene has finite deformation: its tangent is not symmetric");
+        }
+    }
+    scene_motion(fn, nm, d, AS_V, AS_DT, AS_DVDU);
+    std::vector<double> Rc(n, 0.0);
+    long nt = 0, bad = -1;
+    std::vector<long> Ti, Tj;
+    std::vector<double> Tv;
+    int st;
+    for (long cap = K ? 4096 : 0;;) {
+        Ti.resize(cap); Tj.resize(cap); Tv.resize(cap);
+        std::fill(Rc.begin(), Rc.end(), 0.0);
+        st = ffc_scene_assemble(d.s, pu, tangent, Rc.data(), cap, Ti.data(), Tj.data(), Tv.data(), &nt, &bad);
+        if (st != FFC_ERR_CAPACITY) break;
+        cap = nt;
+    }
+    if (st) scene_error(fn, st, bad, "the contact assembly");
+    R->resize(n);
+    for (long i = 0; i < n; i++) (*R)[i] = Rc[i];
+    double active = 0;
+    ffc_scene_stat(d.s, -1, "active", 0, &active);
+    if (!K) return (long)active;
+    std::vector<long> Ci(nt > 0 ? nt : 1), Cj(nt > 0 ? nt : 1), rp(n + 1), wk(n);
+    std::vector<double> Cv(nt > 0 ? nt : 1);
+    const long nz = ffc_triplets_sum(n, nt, Ti.data(), Tj.data(), Tv.data(), Ci.data(), Cj.data(), Cv.data(), rp.data(),
+                                     wk.data());
+    if (nz < 0) scene_error(fn, (int)nz, -1, "the contact tangent");
+    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, (int)std::min(nz, 1L << 30), lower ? 1 : 0);
+    for (long t = 0; t < nz; t++)
+        if (!lower || Ci[t] >= Cj[t]) (*h)((int)Ci[t], (int)Cj[t]) += Cv[t];
+    K->A.master(h);
+    K->typemat = 0;
+    return (long)active;
+}
+
+long sceneAssemble(const Named &nm, FFScene *const &C, KN<double> *const &u, KN<double> *const &R,
+                   Matrice_Creuse<double> *const &K)
+{
+    if (!K) fail("ffcAssemble", "argument 'K': matrix is not defined");
+    return sceneAssembleImpl("ffcAssemble", nm, C, u, R, K);
+}
+
+long sceneResidual(const Named &nm, FFScene *const &C, KN<double> *const &u, KN<double> *const &R)
+{
+    return sceneAssembleImpl("ffcResidual", nm, C, u, R, nullptr);
+}
+
+// ffcAugment(C, u, [v, dt, dvdu]): Uzawa update of every pair's multipliers;
+// returns the active points of the last assembly.
+basicAC_F0::name_and_type motion_names[] = {
+    {"v", &typeid(KN<double> *)}, {"dt", &typeid(double)}, {"dvdu", &typeid(double)}};
+
+long sceneAugment(const Named &nm, FFScene *const &C, KN<double> *const &u)
+{
+    const char *fn = "ffcAugment";
+    SceneData &d = need_scene(fn, C);
+    const double *pu = need_scene_u(fn, d, u);
+    need_not_inverted(fn, d, pu);
+    scene_motion(fn, nm, d, 0, 1, 2);
+    long bad = -1;
+    int st = ffc_scene_augment(d.s, pu, &bad);
+    if (st) scene_error(fn, st, bad, "the augmentation");
+    double a = 0;
+    ffc_scene_stat(d.s, -1, "active", 0, &a);
+    return (long)a;
+}
+
+// ffcCommit(C, u): u is a converged step (friction history, checkpoint of
+// the multipliers); ffcRestore(C): back to that checkpoint (a step cut);
+// ffcReset(C): no history, no multipliers.
+long sceneCommit(const Named &, FFScene *const &C, KN<double> *const &u)
+{
+    const char *fn = "ffcCommit";
+    SceneData &d = need_scene(fn, C);
+    int st = ffc_scene_commit(d.s, need_scene_u(fn, d, u));
+    if (st) scene_error(fn, st, -1, "the commit");
+    return 0;
+}
+long sceneRestore(const Named &, FFScene *const &C)
+{
+    ffc_scene_restore(need_scene("ffcRestore", C).s);
+    return 0;
+}
+long sceneReset(const Named &, FFScene *const &C)
+{
+    ffc_scene_reset(need_scene("ffcReset", C).s);
+    return 0;
+}
+
+// ffcStat(C, name, pair = -1, step = 0): a statistic of the last assembly
+// (or augmentation) by name, of one pair or of all; step = 1: as it was
+// at the last ffcCommit (the converged step).
+basicAC_F0::name_and_type pair_only_names[] = {{"pair", &typeid(long)}};
+basicAC_F0::name_and_type stat_names[] = {{"pair", &typeid(long)}, {"step", &typeid(long)}};
+
+double sceneStat(const Named &nm, FFScene *const &C, string *const &name)
+{
+    const char *fn = "ffcStat";
+    SceneData &d = need_scene(fn, C);
+    const int k = need_pair_index(fn, d, nm.integer(0, -1), true);
+    const std::string n = name ? *name : "";
+    double v = 0;
+    const long step = nm.integer(1, 0);
+    if (step != 0 && step != 1) {
+        std::ostringstream s;
+        s << "argument 'step': " << step << " must be 0 (the last assembly) or 1 (the last commit)";
+        fail(fn, s.str());
+    }
+    int st = ffc_scene_stat(d.s, k, n.c_str(), (int)step, &v);
+    if (st == FFC_ERR_LABEL) {
+        std::ostringstream s;
+        s << "argument 'name': \"" << n << "\" is not a statistic; the statistics are:";
+        for (int i = 0; ffc_scene_stat_name(i); i++) s << " " << ffc_scene_stat_name(i);
+        fail(fn, s.str());
+    }
+    if (st) scene_error(fn, st, -1, "the statistic");
+    return v;
+}
+
+// ffcPoints(C, u, P, pair = -1): one row per slave point (columns of
+// ffc_points: x, y, z, gap, pressure, active, area, master facet, traction
+// x, y, z, friction state, dissipation); returns the rows.
+long scenePoints(const Named &nm, FFScene *const &C, KN<double> *const &u, KNM<double> *const &P)
+{
+    const char *fn = "ffcPoints";
+    SceneData &d = need_scene(fn, C);
+    const int k = need_pair_index(fn, d, nm.integer(0, -1), true);
+    const double *pu = need_scene_u(fn, d, u);
+    if (!P) fail(fn, "argument 'P': array is not defined");
+    const long n = ffc_scene_nlinks(d.s, k);
+    std::vector<double> rows(n * FFC_POINT_COLS + 1);
+    long got = 0, bad = -1;
+    int st = ffc_scene_points(d.s, pu, k, n, rows.data(), &got, &bad);
+    if (st) scene_error(fn, st, bad, "the points");
+    P->resize(n, FFC_POINT_COLS);
+    for (long r = 0; r < n; r++)
+        for (long c = 0; c < FFC_POINT_COLS; c++) (*P)(r, c) = rows[r * FFC_POINT_COLS + c];
+    return n;
+}
+
+// ffcMultipliers(C, k, lambda): pair k's normal multipliers (one per node
+// with nodal multipliers, else one per point); returns their count.
+long sceneMultipliers(const Named &, FFScene *const &C, long const &k, KN<double> *const &lam)
+{
+    const char *fn = "ffcMultipliers";
+    SceneData &d = need_scene(fn, C);
+    const int p = need_pair_index(fn, d, k, false, "k");
+    if (!lam) fail(fn, "argument 'lambda': array is not defined");
+    long n = 0;
+    ffc_scene_multipliers(d.s, p, 0, nullptr, nullptr, &n);
+    std::vector<double> l(n + 1);
+    ffc_scene_multipliers(d.s, p, n, l.data(), nullptr, &n);
+    lam->resize(n);
+    for (long i = 0; i < n; i++) (*lam)[i] = l[i];
+    return n;
+}
+
+// ffcFacetSize(C, pair = -1): the contact mesh size of a pair (or the
+// smallest over all): the smaller mean longest facet edge of its two sides.
+double sceneFacetSize(const Named &nm, FFScene *const &C)
+{
+    const char *fn = "ffcFacetSize";
+    SceneData &d = need_scene(fn, C);
+    const int k = need_pair_index(fn, d, nm.integer(0, -1), true);
+    double h = 0;
+    int st = ffc_scene_facet_size(d.s, k, &h);
+    if (st == FFC_ERR_EMPTY) fail(fn, "argument 'C': the scene has no pair yet (ffcAddPair)");
+    if (st) scene_error(fn, st, -1, "the facet size");
+    return h;
+}
+
+// ffcInverted(C, u): the first tetrahedron inverted or collapsed at u, -1 if none.
+long sceneInverted(const Named &, FFScene *const &C, KN<double> *const &u)
+{
+    const char *fn = "ffcInverted";
+    SceneData &d = need_scene(fn, C);
+    long bad = -1;
+    return ffc_scene_check_volume(d.s, need_scene_u(fn, d, u), &bad) == FFC_ERR_INVERTED ? bad : -1;
+}
+
+template <class R, class... A>
+NamedOp<R, A...> *named(const char *fn, basicAC_F0::name_and_type *names, int n, R (*f)(const Named &, const A &...))
+{
+    return new NamedOp<R, A...>(fn, names, n, f);
+}
+
+void init_scene()
+{
+    Dcl_Type<FFScene *>(InitP<FFScene>, Destroy<FFScene>);
+    zzzfff->Add("ffcScene", atype<FFScene *>());
+    typedef FFScene *S;
+    typedef KN<double> *V;
+    TheOperators->Add("<-", named<S, S, pmesh3>("ffcScene", scene_names, 2, sceneInit));
+    Global.Add("ffcAddPair", "(", named<long, S, KN<long> *, KN<long> *>("ffcAddPair", pair_names, PO_N, addPair));
+    Global.Add("ffcAddPair", "(", named<long, S, long, long>("ffcAddPair", pair_names, PO_N, addPairL));
+    Global.Add("ffcSetPair", "(", named<long, S, long>("ffcSetPair", pair_names, PO_N, setPair));
+    Global.Add("ffcOption", "(", named<double, S, long, string *>("ffcOption", nullptr, 0, pairOption));
+    Global.Add("ffcPairs", "(", named<long, S>("ffcPairs", nullptr, 0, nPairs));
+    Global.Add("ffcSearch", "(", named<long, S, V>("ffcSearch", nullptr, 0, sceneSearch));
+    Global.Add("ffcAssemble", "(",
+               named<long, S, V, V, Matrice_Creuse<double> *>("ffcAssemble", assemble_names, AS_N, sceneAssemble));
+    Global.Add("ffcResidual", "(", named<long, S, V, V>("ffcResidual", assemble_names + 2, 3, sceneResidual));
+    Global.Add("ffcAugment", "(", named<long, S, V>("ffcAugment", motion_names, 3, sceneAugment));
+    Global.Add("ffcCommit", "(", named<long, S, V>("ffcCommit", nullptr, 0, sceneCommit));
+    Global.Add("ffcRestore", "(", named<long, S>("ffcRestore", nullptr, 0, sceneRestore));
+    Global.Add("ffcReset", "(", named<long, S>("ffcReset", nullptr, 0, sceneReset));
+    Global.Add("ffcStat", "(", named<double, S, string *>("ffcStat", stat_names, 2, sceneStat));
+    Global.Add("ffcPoints", "(", named<long, S, V, KNM<double> *>("ffcPoints", pair_only_names, 1, scenePoints));
+    Global.Add("ffcMultipliers", "(", named<long, S, long, V>("ffcMultipliers", nullptr, 0, sceneMultipliers));
+    Global.Add("ffcInverted", "(", named<long, S, V>("ffcInverted", nullptr, 0, sceneInverted));
+    Global.Add("ffcFacetSize", "(", named<double, S>("ffcFacetSize", pair_only_names, 1, sceneFacetSize));
+}
+
+} // namespace
+
 static void init()
 {
+    init_scene();
     Global.Add("ffcSurface", "(",
                new OneOperator3_<long, pmesh3, KN<long> *, KN<long> *>(ffcSurface));
     Global.Add("ffcArea", "(",

@@ -57,6 +57,11 @@ case "valgrind" in *"$pat"*)
     fi ;;
 esac
 
+# a user's script run from outside the repository (relative paths, gmshFile)
+case "outside" in *"$pat"*)
+    if sh tests/outside.sh >"$log" 2>&1; then pass=$((pass + 1)); else fail=$((fail + 1)); report "tests/outside.sh"; fi ;;
+esac
+
 for t in tests/edp/test_*.edp tests/hard/*.edp; do
     [ -f "$t" ] || continue
     case "$t" in *"$pat"*) ;; *) continue ;; esac

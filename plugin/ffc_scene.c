@@ -1,0 +1,568 @@
+/* ffc_scene.c: a contact scene: the nodes of one mesh and any number of
+ * contact pairs, each owning its facets, search tree, links, multipliers,
+ * checkpoint and statistics; search, assembly, augmentation and output
+ * over all pairs. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ffc.h"
+
+typedef struct {
+    ffc_pair_opts o;   /* method, law and search options */
+    long nfs, nfm;     /* slave, master facets */
+    long *Fs, *Fm;     /* [nfs*nper], [nfm*nper] facet nodes */
+    ffc_tree *tree;    /* over the master facets (built at the first search) */
+    int nq;            /* quadrature points per slave facet */
+    long nl;           /* links: nfs * nq */
+    ffc_link *links;   /* [nl] */
+    int searched;      /* 1 once the links come from a search */
+    long nlam;         /* multipliers: nv (nodal) or nl (pointwise) */
+    double *lam, *lam_t;   /* [nlam], [3 nlam] */
+    double *lam0, *lam_t0; /* the same at the last commit */
+    ffc_stats st;      /* last assembly, with the augmentation's own fields
+                          (max_dlam, max_dlam_t, max_pen_node) of the last augmentation */
+    ffc_stats st_step; /* st at the last commit: the converged step's statistics */
+} scene_pair;
+
+struct ffc_scene {
+    int nper;          /* nodes per facet: 3 (linear) or 6 (quadratic) */
+    long nv;           /* nodes */
+    double *X;         /* [nv*3] reference positions (length) */
+    long nt;           /* tetrahedra (for the inversion check; 0: none) */
+    long *T;           /* [nt*4] corner nodes of each tetrahedron */
+    ffc_effects fx;    /* the scene's effects (friction: per pair, mu > 0) */
+    double *u_prev;    /* [nv*3] displacement at the last commit (length) */
+    double *v;         /* [nv*3] velocities (dynamic; length/time) */
+    double dt, dvdu;   /* dynamic: time step (time), dv/du (1/time) */
+    double *x;         /* [nv*3] work: current positions */
+    int np, cap;       /* pairs, capacity */
+    scene_pair *p;     /* [cap] */
+};
+
+ffc_pair_opts ffc_pair_defaults(void)
+{
+    ffc_pair_opts o;
+    memset(&o, 0, sizeof o);
+    o.method = FFC_METHOD_AL;
+    o.qdeg = 4;
+    o.nodal = 1;
+    o.mu = 0.0;
+    o.eps_n = 0.0;
+    o.eps_t = 0.0;
+    o.search = ffc_search_defaults();
+    return o;
+}
+
+static int finite_nonneg(double a) { return a >= 0 && isfinite(a); }
+
+int ffc_pair_opts_check(const ffc_pair_opts *o)
+{
+    if (!o) return FFC_ERR_NULL;
+    if (o->method != FFC_METHOD_AL) return FFC_ERR_VALUE;
+    if (ffc_quad_size(o->qdeg) < 0) return FFC_ERR_QUAD;
+    if (o->nodal != 0 && o->nodal != 1) return FFC_ERR_VALUE;
+    if (!finite_nonneg(o->mu) || !finite_nonneg(o->eps_t)) return FFC_ERR_VALUE;
+    if (!(o->eps_n > 0) || !isfinite(o->eps_n)) return FFC_ERR_VALUE;
+    if (!finite_nonneg(o->search.capture_rel) || !finite_nonneg(o->search.capture_abs) ||
+        !finite_nonneg(o->search.edge_tol))
+        return FFC_ERR_VALUE;
+    return FFC_OK;
+}
+
+static void pair_free(scene_pair *p)
+{
+    free(p->Fs);
+    free(p->Fm);
+    ffc_tree_free(p->tree);
+    free(p->links);
+    free(p->lam);
+    free(p->lam_t);
+    free(p->lam0);
+    free(p->lam_t0);
+    memset(p, 0, sizeof *p);
+}
+
+void ffc_scene_free(ffc_scene *s)
+{
+    if (!s) return;
+    for (int k = 0; k < s->np; k++) pair_free(&s->p[k]);
+    free(s->p);
+    free(s->X);
+    free(s->T);
+    free(s->u_prev);
+    free(s->v);
+    free(s->x);
+    free(s);
+}
+
+int ffc_scene_create(int nper, long nv, const double X[], long nt, const long T[],
+                     const ffc_effects *effects, ffc_scene **out)
+{
+    if (!out) return FFC_ERR_NULL;
+    *out = NULL;
+    if (!X || !effects || (nt > 0 && !T)) return FFC_ERR_NULL;
+    if (nper != 3 && nper != 6) return FFC_ERR_NODES;
+    if (nv <= 0 || nt < 0) return FFC_ERR_SIZE;
+    if ((effects->friction != 0 && effects->friction != 1) || (effects->dynamic != 0 && effects->dynamic != 1) ||
+        (effects->finite_def != 0 && effects->finite_def != 1))
+        return FFC_ERR_VALUE;
+    for (long i = 0; i < 3 * nv; i++)
+        if (!isfinite(X[i])) return FFC_ERR_NONFINITE;
+    for (long i = 0; i < 4 * nt; i++)
+        if (T[i] < 0 || T[i] >= nv) return FFC_ERR_INDEX;
+    ffc_scene *s = calloc(1, sizeof *s);
+    if (!s) return FFC_ERR_MEMORY;
+    s->nper = nper;
+    s->nv = nv;
+    s->nt = nt;
+    s->fx = *effects;
+    s->X = malloc(3 * nv * sizeof *s->X);
+    s->u_prev = calloc(3 * nv, sizeof *s->u_prev);
+    s->v = calloc(3 * nv, sizeof *s->v);
+    s->x = malloc(3 * nv * sizeof *s->x);
+    s->T = nt ? malloc(4 * nt * sizeof *s->T) : NULL;
+    if (!s->X || !s->u_prev || !s->v || !s->x || (nt && !s->T)) {
+        ffc_scene_free(s);
+        return FFC_ERR_MEMORY;
+    }
+    memcpy(s->X, X, 3 * nv * sizeof *X);
+    if (nt) memcpy(s->T, T, 4 * nt * sizeof *T);
+    *out = s;
+    return FFC_OK;
+}
+
+long ffc_scene_nodes(const ffc_scene *s) { return s ? s->nv : FFC_ERR_NULL; }
+int ffc_scene_nper(const ffc_scene *s) { return s ? s->nper : FFC_ERR_NULL; }
+int ffc_scene_npairs(const ffc_scene *s) { return s ? s->np : FFC_ERR_NULL; }
+
+int ffc_scene_effects(const ffc_scene *s, ffc_effects *fx)
+{
+    if (!s || !fx) return FFC_ERR_NULL;
+    *fx = s->fx;
+    return FFC_OK;
+}
+
+/* The pair's facet nodes in range; *bad = the facet entry at fault. */
+static int check_nodes(long n, const long F[], long nv, long *bad)
+{
+    for (long i = 0; i < n; i++)
+        if (F[i] < 0 || F[i] >= nv) { *bad = i; return FFC_ERR_INDEX; }
+    return FFC_OK;
+}
+
+/* Multiplier arrays of the pair for its law (sizes nv or nl), zeroed. */
+static int pair_alloc_lambda(scene_pair *p, long nv)
+{
+    free(p->lam); free(p->lam_t); free(p->lam0); free(p->lam_t0);
+    p->nlam = p->o.nodal ? nv : p->nl;
+    p->lam = calloc(p->nlam, sizeof *p->lam);
+    p->lam0 = calloc(p->nlam, sizeof *p->lam0);
+    p->lam_t = calloc(3 * p->nlam, sizeof *p->lam_t);
+    p->lam_t0 = calloc(3 * p->nlam, sizeof *p->lam_t0);
+    if (!p->lam || !p->lam0 || !p->lam_t || !p->lam_t0) return FFC_ERR_MEMORY;
+    return FFC_OK;
+}
+
+/* Links without a partner, at the pair's quadrature points. */
+static int pair_alloc_links(scene_pair *p)
+{
+    free(p->links);
+    p->nq = ffc_quad_size(p->o.qdeg);
+    p->nl = p->nfs * p->nq;
+    p->links = calloc(p->nl, sizeof *p->links);
+    if (!p->links) return FFC_ERR_MEMORY;
+    for (long k = 0; k < p->nl; k++) {
+        p->links[k].sf = k / p->nq;
+        p->links[k].q = (int)(k % p->nq);
+        p->links[k].mf = -1;
+    }
+    p->searched = 0;
+    return FFC_OK;
+}
+
+int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const long Fm[],
+                       const ffc_pair_opts *o, long *bad)
+{
+    long dummy;
+    if (!bad) bad = &dummy;
+    *bad = -1;
+    if (!s || !Fs || !Fm || !o) return FFC_ERR_NULL;
+    if (nfs <= 0 || nfm <= 0) return FFC_ERR_EMPTY;
+    int st = ffc_pair_opts_check(o);
+    if (st) return st;
+    if ((st = check_nodes(nfs * s->nper, Fs, s->nv, bad))) return st;
+    if ((st = check_nodes(nfm * s->nper, Fm, s->nv, bad))) return st;
+    if (s->np == s->cap) {
+        int cap = s->cap ? 2 * s->cap : 4;
+        scene_pair *q = realloc(s->p, cap * sizeof *q);
+        if (!q) return FFC_ERR_MEMORY;
+        s->p = q;
+        s->cap = cap;
+    }
+    scene_pair *p = &s->p[s->np];
+    memset(p, 0, sizeof *p);
+    p->o = *o;
+    p->nfs = nfs;
+    p->nfm = nfm;
+    p->Fs = malloc(nfs * s->nper * sizeof *p->Fs);
+    p->Fm = malloc(nfm * s->nper * sizeof *p->Fm);
+    if (!p->Fs || !p->Fm || pair_alloc_links(p) || pair_alloc_lambda(p, s->nv)) {
+        pair_free(p);
+        return FFC_ERR_MEMORY;
+    }
+    memcpy(p->Fs, Fs, nfs * s->nper * sizeof *Fs);
+    memcpy(p->Fm, Fm, nfm * s->nper * sizeof *Fm);
+    return s->np++;
+}
+
+int ffc_scene_pair_opts(const ffc_scene *s, int k, ffc_pair_opts *o)
+{
+    if (!s || !o) return FFC_ERR_NULL;
+    if (k < 0 || k >= s->np) return FFC_ERR_INDEX;
+    *o = s->p[k].o;
+    return FFC_OK;
+}
+
+int ffc_scene_set_pair_opts(ffc_scene *s, int k, const ffc_pair_opts *o)
+{
+    if (!s || !o) return FFC_ERR_NULL;
+    if (k < 0 || k >= s->np) return FFC_ERR_INDEX;
+    int st = ffc_pair_opts_check(o);
+    if (st) return st;
+    scene_pair *p = &s->p[k];
+    const int relink = o->qdeg != p->o.qdeg, relam = relink || o->nodal != p->o.nodal;
+    p->o = *o;
+    /* a new rule or multiplier space starts the pair's multipliers afresh */
+    if (relink && (st = pair_alloc_links(p))) return st;
+    if (relam && (st = pair_alloc_lambda(p, s->nv))) return st;
+    return FFC_OK;
+}
+
+int ffc_scene_set_motion(ffc_scene *s, const double v[], double dt, double dvdu)
+{
+    if (!s || !v) return FFC_ERR_NULL;
+    if (!s->fx.dynamic) return FFC_ERR_VALUE;
+    if (!(dt > 0) || !isfinite(dt) || !finite_nonneg(dvdu)) return FFC_ERR_VALUE;
+    for (long i = 0; i < 3 * s->nv; i++)
+        if (!isfinite(v[i])) return FFC_ERR_NONFINITE;
+    memcpy(s->v, v, 3 * s->nv * sizeof *v);
+    s->dt = dt;
+    s->dvdu = dvdu;
+    return FFC_OK;
+}
+
+/* Current positions x = X + u; FFC_ERR_NONFINITE (*bad = node) otherwise. */
+static int positions(ffc_scene *s, const double u[], long *bad)
+{
+    for (long i = 0; i < 3 * s->nv; i++) {
+        s->x[i] = s->X[i] + u[i];
+        if (!isfinite(s->x[i])) { *bad = i / 3; return FFC_ERR_NONFINITE; }
+    }
+    return FFC_OK;
+}
+
+int ffc_scene_search(ffc_scene *s, const double u[], long *linked, long *bad)
+{
+    long dummy;
+    if (!bad) bad = &dummy;
+    *bad = -1;
+    if (!s || !u) return FFC_ERR_NULL;
+    int st = positions(s, u, bad);
+    if (st) return st;
+    long total = 0;
+    for (int k = 0; k < s->np; k++) {
+        scene_pair *p = &s->p[k];
+        /* the tree keeps its order and refits its boxes as the surfaces move */
+        st = p->tree ? ffc_tree_refit(p->tree, s->x) : ffc_tree_build(s->nper, p->nfm, p->Fm, s->nv, s->x, &p->tree);
+        if (st) { *bad = k; return st; }
+        st = ffc_search(p->tree, s->nper, p->nfs, p->Fs, s->nv, s->x, p->o.qdeg, &p->o.search, p->nl, p->links);
+        if (st < 0) { *bad = k; return st; }
+        p->searched = 1;
+        total += st;
+    }
+    if (linked) *linked = total;
+    return FFC_OK;
+}
+
+/* The kernels' view of pair p at displacement u, and its law. */
+static void pair_view(const ffc_scene *s, const scene_pair *p, const double u[], int tangent, ffc_pair *v,
+                      ffc_law *law, ffc_effects *fx)
+{
+    v->ns = v->nm = s->nper;
+    v->nfs = p->nfs;
+    v->Fs = p->Fs;
+    v->nfm = p->nfm;
+    v->Fm = p->Fm;
+    v->nv = s->nv;
+    v->X = s->X;
+    v->u = u;
+    v->u_prev = s->u_prev;
+    v->v = s->v;
+    memset(law, 0, sizeof *law);
+    law->eps_n = p->o.eps_n;
+    law->nodal = p->o.nodal;
+    law->material_only = tangent == FFC_TANGENT_MATERIAL;
+    law->mu = p->o.mu;
+    law->eps_t = p->o.eps_t > 0 ? p->o.eps_t : (s->fx.dynamic ? p->o.eps_n * s->dt : p->o.eps_n);
+    law->dt = s->dt;
+    law->dvdu = s->dvdu;
+    *fx = s->fx;
+    fx->friction = p->o.mu > 0; /* a frictionless pair computes no friction term */
+}
+
+/* Keep the augmentation's own statistics across an assembly. */
+static void keep_augment_stats(ffc_stats *dst, const ffc_stats *old)
+{
+    dst->max_dlam = old->max_dlam;
+    dst->max_dlam_t = old->max_dlam_t;
+    dst->max_pen_node = old->max_pen_node;
+}
+
+int ffc_scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], long cap, long Ti[], long Tj[],
+                       double Tv[], long *ntrip, long *bad)
+{
+    long dummy;
+    if (!bad) bad = &dummy;
+    *bad = -1;
+    if (!s || !u || !R || !ntrip) return FFC_ERR_NULL;
+    if (tangent != FFC_TANGENT_NONE && tangent != FFC_TANGENT_CONSISTENT && tangent != FFC_TANGENT_MATERIAL)
+        return FFC_ERR_VALUE;
+    if (tangent != FFC_TANGENT_NONE && (!Ti || !Tj || !Tv)) return FFC_ERR_NULL;
+    if (cap < 0) return FFC_ERR_SIZE;
+    long nt = 0;
+    int over = 0;
+    for (int k = 0; k < s->np; k++) {
+        scene_pair *p = &s->p[k];
+        ffc_pair v;
+        ffc_law law;
+        ffc_effects fx;
+        pair_view(s, p, u, tangent, &v, &law, &fx);
+        const long room = over || nt > cap ? 0 : cap - nt;
+        long n = 0;
+        ffc_stats old = p->st;
+        int st = ffc_assemble(&fx, &v, p->o.qdeg, p->nl, p->links, p->lam, p->lam_t, &law, R, room,
+                              tangent == FFC_TANGENT_NONE ? NULL : Ti + (over ? 0 : nt),
+                              tangent == FFC_TANGENT_NONE ? NULL : Tj + (over ? 0 : nt),
+                              tangent == FFC_TANGENT_NONE ? NULL : Tv + (over ? 0 : nt), &n, &p->st, bad);
+        if (st == FFC_ERR_CAPACITY) over = 1;
+        else if (st) return st;
+        keep_augment_stats(&p->st, &old);
+        nt += n;
+    }
+    *ntrip = nt;
+    return over ? FFC_ERR_CAPACITY : FFC_OK;
+}
+
+int ffc_scene_augment(ffc_scene *s, const double u[], long *bad)
+{
+    long dummy;
+    if (!bad) bad = &dummy;
+    *bad = -1;
+    if (!s || !u) return FFC_ERR_NULL;
+    for (int k = 0; k < s->np; k++) {
+        scene_pair *p = &s->p[k];
+        ffc_pair v;
+        ffc_law law;
+        ffc_effects fx;
+        pair_view(s, p, u, FFC_TANGENT_NONE, &v, &law, &fx);
+        int st = ffc_augment(&fx, &v, p->o.qdeg, p->nl, p->links, p->lam, p->lam_t, &law, &p->st, bad);
+        if (st) return st;
+    }
+    return FFC_OK;
+}
+
+int ffc_scene_commit(ffc_scene *s, const double u[])
+{
+    if (!s || !u) return FFC_ERR_NULL;
+    for (long i = 0; i < 3 * s->nv; i++)
+        if (!isfinite(u[i])) return FFC_ERR_NONFINITE;
+    memcpy(s->u_prev, u, 3 * s->nv * sizeof *u);
+    for (int k = 0; k < s->np; k++) {
+        scene_pair *p = &s->p[k];
+        memcpy(p->lam0, p->lam, p->nlam * sizeof *p->lam);
+        memcpy(p->lam_t0, p->lam_t, 3 * p->nlam * sizeof *p->lam_t);
+        p->st_step = p->st;
+    }
+    return FFC_OK;
+}
+
+int ffc_scene_restore(ffc_scene *s)
+{
+    if (!s) return FFC_ERR_NULL;
+    for (int k = 0; k < s->np; k++) {
+        scene_pair *p = &s->p[k];
+        memcpy(p->lam, p->lam0, p->nlam * sizeof *p->lam);
+        memcpy(p->lam_t, p->lam_t0, 3 * p->nlam * sizeof *p->lam_t);
+    }
+    return FFC_OK;
+}
+
+int ffc_scene_reset(ffc_scene *s)
+{
+    if (!s) return FFC_ERR_NULL;
+    memset(s->u_prev, 0, 3 * s->nv * sizeof *s->u_prev);
+    memset(s->v, 0, 3 * s->nv * sizeof *s->v);
+    for (int k = 0; k < s->np; k++) {
+        scene_pair *p = &s->p[k];
+        memset(p->lam, 0, p->nlam * sizeof *p->lam);
+        memset(p->lam0, 0, p->nlam * sizeof *p->lam0);
+        memset(p->lam_t, 0, 3 * p->nlam * sizeof *p->lam_t);
+        memset(p->lam_t0, 0, 3 * p->nlam * sizeof *p->lam_t0);
+        memset(&p->st, 0, sizeof p->st);
+        memset(&p->st_step, 0, sizeof p->st_step);
+        for (long l = 0; l < p->nl; l++) p->links[l].mf = -1;
+        p->searched = 0;
+    }
+    return FFC_OK;
+}
+
+/* Statistics by name: how each one reads a pair's ffc_stats, and how the
+ * pairs combine (sum or maximum). */
+typedef struct {
+    const char *name;
+    int sum;           /* 1: summed over pairs, 0: largest */
+    double (*get)(const ffc_stats *st);
+} stat_entry;
+
+#define FFC__STAT(fn, expr) static double fn(const ffc_stats *st) { return (expr); }
+FFC__STAT(st_linked, (double)st->linked)
+FFC__STAT(st_active, (double)st->active)
+FFC__STAT(st_max_pen, st->max_pen)
+FFC__STAT(st_max_pen_node, st->max_pen_node)
+FFC__STAT(st_max_dlam, st->max_dlam)
+FFC__STAT(st_max_tn, st->max_tn)
+FFC__STAT(st_fx, st->force[0])
+FFC__STAT(st_fy, st->force[1])
+FFC__STAT(st_fz, st->force[2])
+FFC__STAT(st_stick, (double)st->stick)
+FFC__STAT(st_slip, (double)st->slip)
+FFC__STAT(st_max_dlam_t, st->max_dlam_t)
+FFC__STAT(st_max_tt, st->max_tt)
+FFC__STAT(st_ftx, st->force_t[0])
+FFC__STAT(st_fty, st->force_t[1])
+FFC__STAT(st_ftz, st->force_t[2])
+FFC__STAT(st_dissipation, st->dissipation)
+FFC__STAT(st_max_slip, st->max_slip)
+#undef FFC__STAT
+
+static const stat_entry stat_table[] = {
+    {"linked", 1, st_linked},          {"active", 1, st_active},       {"maxPen", 0, st_max_pen},
+    {"maxPenNode", 0, st_max_pen_node}, {"maxDlam", 0, st_max_dlam},   {"maxTn", 0, st_max_tn},
+    {"Fx", 1, st_fx},                  {"Fy", 1, st_fy},               {"Fz", 1, st_fz},
+    {"stick", 1, st_stick},            {"slip", 1, st_slip},           {"maxDlamT", 0, st_max_dlam_t},
+    {"maxTt", 0, st_max_tt},           {"Ftx", 1, st_ftx},             {"Fty", 1, st_fty},
+    {"Ftz", 1, st_ftz},                {"dissipation", 1, st_dissipation}, {"maxSlip", 0, st_max_slip},
+};
+#define FFC__NSTATS ((int)(sizeof stat_table / sizeof stat_table[0]))
+
+const char *ffc_scene_stat_name(int i)
+{
+    return i >= 0 && i < FFC__NSTATS ? stat_table[i].name : NULL;
+}
+
+int ffc_scene_stat(const ffc_scene *s, int pair, const char *name, int step, double *value)
+{
+    if (!s || !name || !value) return FFC_ERR_NULL;
+    if (pair < -1 || pair >= s->np) return FFC_ERR_INDEX;
+    for (int i = 0; i < FFC__NSTATS; i++) {
+        if (strcmp(name, stat_table[i].name)) continue;
+        double r = 0.0;
+        for (int k = 0; k < s->np; k++) {
+            if (pair >= 0 && k != pair) continue;
+            const double a = stat_table[i].get(step ? &s->p[k].st_step : &s->p[k].st);
+            r = stat_table[i].sum ? r + a : (a > r ? a : r);
+        }
+        *value = r;
+        return FFC_OK;
+    }
+    return FFC_ERR_LABEL;
+}
+
+long ffc_scene_nlinks(const ffc_scene *s, int pair)
+{
+    if (!s) return FFC_ERR_NULL;
+    if (pair < -1 || pair >= s->np) return FFC_ERR_INDEX;
+    long n = 0;
+    for (int k = 0; k < s->np; k++)
+        if (pair < 0 || k == pair) n += s->p[k].nl;
+    return n;
+}
+
+int ffc_scene_points(const ffc_scene *s, const double u[], int pair, long cap, double P[], long *n, long *bad)
+{
+    long dummy;
+    if (!bad) bad = &dummy;
+    *bad = -1;
+    if (!s || !u || !P || !n) return FFC_ERR_NULL;
+    const long need = ffc_scene_nlinks(s, pair);
+    if (need < 0) return (int)need;
+    *n = need;
+    if (cap < need) return FFC_ERR_CAPACITY;
+    long row = 0;
+    for (int k = 0; k < s->np; k++) {
+        if (pair >= 0 && k != pair) continue;
+        const scene_pair *p = &s->p[k];
+        ffc_pair v;
+        ffc_law law;
+        ffc_effects fx;
+        pair_view(s, p, u, FFC_TANGENT_NONE, &v, &law, &fx);
+        int st = ffc_points(&fx, &v, p->o.qdeg, p->nl, p->links, p->lam, p->lam_t, &law,
+                            P + row * FFC_POINT_COLS, bad);
+        if (st) return st;
+        row += p->nl;
+    }
+    return FFC_OK;
+}
+
+int ffc_scene_multipliers(const ffc_scene *s, int pair, long cap, double lam[], double lam_t[], long *n)
+{
+    if (!s || !n) return FFC_ERR_NULL;
+    if (pair < 0 || pair >= s->np) return FFC_ERR_INDEX;
+    const scene_pair *p = &s->p[pair];
+    *n = p->nlam;
+    if (cap < p->nlam) return FFC_ERR_CAPACITY;
+    if (lam) memcpy(lam, p->lam, p->nlam * sizeof *lam);
+    if (lam_t) memcpy(lam_t, p->lam_t, 3 * p->nlam * sizeof *lam_t);
+    return FFC_OK;
+}
+
+int ffc_scene_check_volume(const ffc_scene *s, const double u[], long *bad)
+{
+    if (!s || !u) return FFC_ERR_NULL;
+    if (!s->nt) return FFC_OK;
+    return ffc_volume_check(s->nt, s->T, s->nv, s->X, u, bad);
+}
+
+/* mean longest edge (vertices 0-2) of nf facets F[nf*nper] at positions X */
+static double mean_size(int nper, long nf, const long F[], const double X[])
+{
+    double h = 0.0;
+    for (long f = 0; f < nf; f++) {
+        double l2 = 0.0;
+        for (int a = 0; a < 3; a++) {
+            const double *p = X + 3 * F[nper * f + a], *q = X + 3 * F[nper * f + (a + 1) % 3];
+            const double d = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]);
+            if (d > l2) l2 = d;
+        }
+        h += sqrt(l2);
+    }
+    return nf ? h / nf : 0.0;
+}
+
+int ffc_scene_facet_size(const ffc_scene *s, int pair, double *h)
+{
+    if (!s || !h) return FFC_ERR_NULL;
+    if (pair < -1 || pair >= s->np) return FFC_ERR_INDEX;
+    if (s->np == 0) return FFC_ERR_EMPTY;
+    double r = INFINITY;
+    for (int k = 0; k < s->np; k++) {
+        if (pair >= 0 && k != pair) continue;
+        const scene_pair *p = &s->p[k];
+        const double hs = mean_size(s->nper, p->nfs, p->Fs, s->X), hm = mean_size(s->nper, p->nfm, p->Fm, s->X);
+        if (hs < r) r = hs;
+        if (hm < r) r = hm;
+    }
+    *h = r;
+    return FFC_OK;
+}

@@ -1,0 +1,311 @@
+/* test_scene.c: contact scenes with several pairs: independent
+ * multipliers, assembly as the sum of the pairs, checkpoints, statistics
+ * by name, capacities and bad input. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "ffc_test.h"
+
+/* Two pairs of unit squares (two triangles each), 16 nodes:
+ *   pair 0: slave square at z = -d0 facing down onto a master square at
+ *           z = 0 facing up (nodes 0-3 slave, 4-7 master);
+ *   pair 1: the same at z = 1 - d1 onto z = 1 (nodes 8-11, 12-15).
+ * Each slave penetrates its master uniformly by d. */
+#define NV 16
+static const double D0 = 1e-3, D1 = 3e-3, EPS = 1e3;
+
+static void square(double z, double X[], long base)
+{
+    const double c[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int a = 0; a < 4; a++) {
+        X[3 * (base + a)] = c[a][0];
+        X[3 * (base + a) + 1] = c[a][1];
+        X[3 * (base + a) + 2] = z;
+    }
+}
+/* facets of the square at base: up = 1 normal +z, 0 normal -z */
+static void facets(long base, int up, long F[6])
+{
+    const long t[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    for (int f = 0; f < 2; f++)
+        for (int a = 0; a < 3; a++) F[3 * f + a] = base + t[f][up ? a : 2 - a];
+}
+static void geometry(double X[3 * NV], long Fs0[6], long Fm0[6], long Fs1[6], long Fm1[6])
+{
+    square(-D0, X, 0);
+    square(0.0, X, 4);
+    square(1.0 - D1, X, 8);
+    square(1.0, X, 12);
+    facets(0, 0, Fs0);
+    facets(4, 1, Fm0);
+    facets(8, 0, Fs1);
+    facets(12, 1, Fm1);
+}
+
+static ffc_pair_opts opts(double mu)
+{
+    ffc_pair_opts o = ffc_pair_defaults();
+    o.eps_n = EPS;
+    o.mu = mu;
+    o.qdeg = 2;
+    return o;
+}
+
+/* a scene with pair 0, pair 1 or both (which: bit 0, bit 1) */
+static ffc_scene *make(int which, int friction)
+{
+    double X[3 * NV];
+    long Fs0[6], Fm0[6], Fs1[6], Fm1[6], bad;
+    geometry(X, Fs0, Fm0, Fs1, Fm1);
+    ffc_effects fx = {friction, 0, 0};
+    ffc_scene *s = NULL;
+    assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_OK);
+    ffc_pair_opts none = ffc_pair_defaults(); /* eps_n 0: refused, nothing added */
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &none, &bad), FFC_ERR_VALUE);
+    ffc_pair_opts o0 = opts(friction ? 0.3 : 0.0), o1 = opts(0.0);
+    if (which & 1) assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o0, &bad), 0);
+    if (which & 2) assert_int_equal(ffc_scene_add_pair(s, 2, Fs1, 2, Fm1, &o1, &bad), (which & 1) ? 1 : 0);
+    return s;
+}
+
+static double stat(const ffc_scene *s, int k, const char *name)
+{
+    double v = NAN;
+    assert_int_equal(ffc_scene_stat(s, k, name, 0, &v), FFC_OK);
+    return v;
+}
+
+/* Uniform penetration d (u = 0 throughout): the weighted nodal gap is -d
+ * at every slave node, so each augmentation adds eps d to lambda there;
+ * after three, an assembly presses with t = 3 eps d + eps d = 4 eps d over
+ * the unit area. */
+static void test_two_pairs_independent(void **state)
+{
+    (void)state;
+    double u[3 * NV] = {0};
+    ffc_scene *both = make(3, 0), *one = make(1, 0), *two = make(2, 0);
+    ffc_scene *sc[3] = {both, one, two};
+    for (int i = 0; i < 3; i++) {
+        long linked;
+        assert_int_equal(ffc_scene_search(sc[i], u, &linked, NULL), FFC_OK);
+        assert_int_equal(linked, (i == 0 ? 2 : 1) * 2 * 3);
+        for (int it = 0; it < 3; it++) {
+            assert_int_equal(ffc_scene_augment(sc[i], u, NULL), FFC_OK);
+            if (it == 0) {
+                /* lambda = eps d at the pair's slave nodes, zero elsewhere */
+                double lam[NV];
+                long n;
+                assert_int_equal(ffc_scene_multipliers(sc[i], 0, NV, lam, NULL, &n), FFC_OK);
+                assert_int_equal(n, NV);
+                const long base = i == 2 ? 8 : 0;
+                const double d = i == 2 ? D1 : D0;
+                for (long v = 0; v < NV; v++)
+                    assert_close(lam[v], (v >= base && v < base + 4) ? EPS * d : 0.0, 1e-12);
+            }
+        }
+    }
+    /* each pair of the two-pair scene has the multipliers it has alone */
+    double a[NV], b[NV];
+    long n;
+    for (int k = 0; k < 2; k++) {
+        assert_int_equal(ffc_scene_multipliers(both, k, NV, a, NULL, &n), FFC_OK);
+        assert_int_equal(ffc_scene_multipliers(k ? two : one, 0, NV, b, NULL, &n), FFC_OK);
+        for (long v = 0; v < NV; v++) assert_close(a[v], b[v], 0.0);
+    }
+    /* the assembled forces: 4 eps d per pair; the total is their sum */
+    double R[3 * NV] = {0};
+    long nt;
+    assert_int_equal(ffc_scene_assemble(both, u, FFC_TANGENT_NONE, R, 0, NULL, NULL, NULL, &nt, NULL), FFC_OK);
+    assert_close(stat(both, 0, "Fz"), 4 * EPS * D0, 1e-12);
+    assert_close(stat(both, 1, "Fz"), 4 * EPS * D1, 1e-12);
+    assert_close(stat(both, -1, "Fz"), 4 * EPS * (D0 + D1), 1e-12);
+    assert_close(stat(both, -1, "maxPen"), D1, 1e-15);
+    assert_close(stat(both, 0, "maxPen"), D0, 1e-15);
+    /* the slave nodes of each pair carry its force, downward (-z) */
+    double f0 = 0, f1 = 0;
+    for (long v = 0; v < 4; v++) f0 += R[3 * v + 2];
+    for (long v = 8; v < 12; v++) f1 += R[3 * v + 2];
+    assert_close(f0, -4 * EPS * D0, 1e-12);
+    assert_close(f1, -4 * EPS * D1, 1e-12);
+    for (int i = 0; i < 3; i++) ffc_scene_free(sc[i]);
+}
+
+/* The kernel itself: augmenting pair 1 in an array shared with pair 0
+ * leaves pair 0's entries as they are (it used to zero every node). */
+static void test_augment_shared_array(void **state)
+{
+    (void)state;
+    double X[3 * NV], u[3 * NV] = {0}, lam[NV], lam0[NV];
+    long Fs0[6], Fm0[6], Fs1[6], Fm1[6], bad;
+    geometry(X, Fs0, Fm0, Fs1, Fm1);
+    ffc_effects fx = {0, 0, 0};
+    ffc_law law = {.eps_n = EPS, .nodal = 1};
+    ffc_pair p0 = {3, 2, Fs0, 3, 2, Fm0, NV, X, u, NULL, NULL}, p1 = {3, 2, Fs1, 3, 2, Fm1, NV, X, u, NULL, NULL};
+    ffc_link L0[6], L1[6];
+    ffc_tree *t0, *t1;
+    assert_int_equal(ffc_tree_build(3, 2, Fm0, NV, X, &t0), FFC_OK);
+    assert_int_equal(ffc_tree_build(3, 2, Fm1, NV, X, &t1), FFC_OK);
+    ffc_search_opts so = ffc_search_defaults();
+    assert_int_equal(ffc_search(t0, 3, 2, Fs0, NV, X, 2, &so, 6, L0), 6);
+    assert_int_equal(ffc_search(t1, 3, 2, Fs1, NV, X, 2, &so, 6, L1), 6);
+    for (long v = 0; v < NV; v++) lam[v] = 0.0;
+    assert_int_equal(ffc_augment(&fx, &p0, 2, 6, L0, lam, NULL, &law, NULL, &bad), FFC_OK);
+    memcpy(lam0, lam, sizeof lam);
+    assert_int_equal(ffc_augment(&fx, &p1, 2, 6, L1, lam, NULL, &law, NULL, &bad), FFC_OK);
+    for (long v = 0; v < 4; v++) assert_close(lam[v], lam0[v], 0.0);
+    for (long v = 0; v < 4; v++) assert_close(lam[v], EPS * D0, 1e-12);
+    for (long v = 8; v < 12; v++) assert_close(lam[v], EPS * D1, 1e-12);
+    ffc_tree_free(t0);
+    ffc_tree_free(t1);
+}
+
+/* The scene's assembly is the sum of the kernels' per-pair assemblies. */
+static void test_assembly_is_sum(void **state)
+{
+    (void)state;
+    double u[3 * NV];
+    uint64_t seed = 7;
+    for (int i = 0; i < 3 * NV; i++) u[i] = test_rand(&seed, -2e-4, 2e-4);
+    ffc_scene *both = make(3, 0), *one = make(1, 0), *two = make(2, 0);
+    ffc_scene *sc[3] = {both, one, two};
+    double R[3][3 * NV];
+    long need[3];
+    double *A[3];
+    for (int i = 0; i < 3; i++) {
+        assert_int_equal(ffc_scene_search(sc[i], u, NULL, NULL), FFC_OK);
+        assert_int_equal(ffc_scene_augment(sc[i], u, NULL), FFC_OK);
+        memset(R[i], 0, sizeof R[i]);
+        /* no room: the count needed */
+        assert_int_equal(ffc_scene_assemble(sc[i], u, FFC_TANGENT_CONSISTENT, R[i], 0, (long[1]){0}, (long[1]){0},
+                                            (double[1]){0}, &need[i], NULL),
+                         FFC_ERR_CAPACITY);
+        assert_true(need[i] > 0);
+        long *Ti = malloc(need[i] * sizeof *Ti), *Tj = malloc(need[i] * sizeof *Tj), nt;
+        double *Tv = malloc(need[i] * sizeof *Tv);
+        memset(R[i], 0, sizeof R[i]);
+        assert_int_equal(ffc_scene_assemble(sc[i], u, FFC_TANGENT_CONSISTENT, R[i], need[i], Ti, Tj, Tv, &nt, NULL),
+                         FFC_OK);
+        assert_int_equal(nt, need[i]);
+        A[i] = calloc(9 * NV * NV, sizeof *A[i]);
+        for (long k = 0; k < nt; k++) A[i][Ti[k] * 3 * NV + Tj[k]] += Tv[k];
+        free(Ti); free(Tj); free(Tv);
+    }
+    assert_int_equal(need[0], need[1] + need[2]);
+    for (int i = 0; i < 3 * NV; i++) assert_close(R[0][i], R[1][i] + R[2][i], 1e-12);
+    for (int i = 0; i < 9 * NV * NV; i++) assert_close(A[0][i], A[1][i] + A[2][i], 1e-9);
+    for (int i = 0; i < 3; i++) { free(A[i]); ffc_scene_free(sc[i]); }
+}
+
+/* A step cut goes back to the multipliers of the last commit. */
+static void test_commit_restore(void **state)
+{
+    (void)state;
+    double u[3 * NV] = {0}, a[NV], b[NV];
+    long n;
+    ffc_scene *s = make(3, 0);
+    assert_int_equal(ffc_scene_search(s, u, NULL, NULL), FFC_OK);
+    assert_int_equal(ffc_scene_augment(s, u, NULL), FFC_OK);
+    assert_int_equal(ffc_scene_commit(s, u), FFC_OK);
+    assert_int_equal(ffc_scene_multipliers(s, 1, NV, a, NULL, &n), FFC_OK);
+    assert_int_equal(ffc_scene_augment(s, u, NULL), FFC_OK);
+    assert_int_equal(ffc_scene_multipliers(s, 1, NV, b, NULL, &n), FFC_OK);
+    assert_true(b[8] > a[8] * 1.5);
+    assert_int_equal(ffc_scene_restore(s), FFC_OK);
+    assert_int_equal(ffc_scene_multipliers(s, 1, NV, b, NULL, &n), FFC_OK);
+    for (long v = 0; v < NV; v++) assert_close(a[v], b[v], 0.0);
+    assert_int_equal(ffc_scene_reset(s), FFC_OK);
+    assert_int_equal(ffc_scene_multipliers(s, 1, NV, b, NULL, &n), FFC_OK);
+    for (long v = 0; v < NV; v++) assert_close(b[v], 0.0, 0.0);
+    ffc_scene_free(s);
+}
+
+/* Friction belongs to the pair: a frictional pair beside a frictionless
+ * one; only the first computes friction, and its tangent is non-symmetric. */
+static void test_friction_per_pair(void **state)
+{
+    (void)state;
+    double u[3 * NV] = {0};
+    ffc_scene *s = make(3, 1);
+    assert_int_equal(ffc_scene_search(s, u, NULL, NULL), FFC_OK);
+    assert_int_equal(ffc_scene_augment(s, u, NULL), FFC_OK);
+    assert_int_equal(ffc_scene_commit(s, u), FFC_OK);
+    for (int v = 0; v < 4; v++) u[3 * v] = 1e-2;      /* slide pair 0's slave */
+    for (int v = 8; v < 12; v++) u[3 * v] = 1e-2;     /* and pair 1's */
+    double R[3 * NV] = {0};
+    long nt;
+    assert_int_equal(ffc_scene_assemble(s, u, FFC_TANGENT_NONE, R, 0, NULL, NULL, NULL, &nt, NULL), FFC_OK);
+    assert_close(stat(s, 0, "slip"), 4, 0);
+    assert_close(stat(s, 1, "slip") + stat(s, 1, "stick"), 0, 0);
+    /* pair 0 slides at mu t_N: |Ft| = 0.3 |Fz| */
+    assert_close(fabs(stat(s, 0, "Ftx")), 0.3 * stat(s, 0, "Fz"), 1e-9);
+    assert_close(stat(s, 1, "Ftx"), 0.0, 0.0);
+    /* the slip since the commit: the slave moved by 1e-2 over a fixed master */
+    assert_close(stat(s, 0, "maxSlip"), 1e-2, 1e-12);
+    assert_close(stat(s, 1, "maxSlip"), 0.0, 0.0);
+    /* after a commit the next assembly sees no slip; the step's statistics
+     * keep what the converged step had */
+    assert_int_equal(ffc_scene_commit(s, u), FFC_OK);
+    assert_int_equal(ffc_scene_assemble(s, u, FFC_TANGENT_NONE, R, 0, NULL, NULL, NULL, &nt, NULL), FFC_OK);
+    assert_close(stat(s, 0, "maxSlip"), 0.0, 0.0);
+    double v = 0;
+    assert_int_equal(ffc_scene_stat(s, 0, "maxSlip", 1, &v), FFC_OK);
+    assert_close(v, 1e-2, 1e-12);
+    assert_int_equal(ffc_scene_stat(s, 0, "slip", 1, &v), FFC_OK);
+    assert_close(v, 4, 0);
+    ffc_scene_free(s);
+}
+
+static void test_bad_input(void **state)
+{
+    (void)state;
+    double X[3 * NV], v;
+    long Fs0[6], Fm0[6], Fs1[6], Fm1[6], bad;
+    geometry(X, Fs0, Fm0, Fs1, Fm1);
+    ffc_effects fx = {0, 0, 0};
+    ffc_scene *s = NULL;
+    assert_int_equal(ffc_scene_create(4, NV, X, 0, NULL, &fx, &s), FFC_ERR_NODES);
+    assert_null(s);
+    assert_int_equal(ffc_scene_create(3, 0, X, 0, NULL, &fx, &s), FFC_ERR_SIZE);
+    X[5] = NAN;
+    assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_ERR_NONFINITE);
+    X[5] = -D0;
+    assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_OK);
+    ffc_pair_opts o = opts(0.0);
+    o.qdeg = 9;
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), FFC_ERR_QUAD);
+    o = opts(0.0);
+    o.mu = -1;
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), FFC_ERR_VALUE);
+    o = opts(0.0);
+    Fm0[4] = NV;
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), FFC_ERR_INDEX);
+    assert_int_equal(bad, 4);
+    Fm0[4] = 6;
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), 0);
+    assert_int_equal(ffc_scene_stat(s, 0, "noSuchStatistic", 0, &v), FFC_ERR_LABEL);
+    assert_int_equal(ffc_scene_stat(s, 1, "maxPen", 0, &v), FFC_ERR_INDEX);
+    assert_int_equal(ffc_scene_stat(s, -1, "maxPen", 0, &v), FFC_OK);
+    for (int i = 0; ffc_scene_stat_name(i); i++)
+        assert_int_equal(ffc_scene_stat(s, 0, ffc_scene_stat_name(i), 0, &v), FFC_OK);
+    double u[3 * NV] = {0}, w[3 * NV] = {0};
+    u[7] = INFINITY;
+    assert_int_equal(ffc_scene_search(s, u, NULL, &bad), FFC_ERR_NONFINITE);
+    assert_int_equal(bad, 2);
+    assert_int_equal(ffc_scene_set_motion(s, w, 0.1, 1.0), FFC_ERR_VALUE); /* not a dynamic scene */
+    assert_int_equal(ffc_scene_assemble(s, w, 7, w, 0, NULL, NULL, NULL, &bad, NULL), FFC_ERR_VALUE);
+    ffc_scene_free(s);
+    ffc_scene_free(NULL);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_two_pairs_independent),
+        cmocka_unit_test(test_augment_shared_array),
+        cmocka_unit_test(test_assembly_is_sum),
+        cmocka_unit_test(test_commit_restore),
+        cmocka_unit_test(test_friction_per_pair),
+        cmocka_unit_test(test_bad_input),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
