@@ -495,7 +495,8 @@ typedef struct {
     int qdeg;          /* quadrature degree on slave facets (1..6) */
     int nodal;         /* 1: multipliers at slave nodes, 0: at quadrature points */
     double mu;         /* Coulomb coefficient (1), >= 0; 0: frictionless */
-    double eps_n;      /* normal penalty (force/length^3), > 0 */
+    double eps_n;      /* normal penalty (force/length^3), > 0; 0: not set yet (assembly and
+                          augmentation refuse the scene until it is: ffc_scene_auto_penalty) */
     double eps_t;      /* tangential penalty (force/length^3; dynamic: force*time/length^3),
                           >= 0; 0: eps_n (dynamic: eps_n dt) */
     ffc_search_opts search; /* capture distances and edge tolerance */
@@ -581,6 +582,27 @@ int ffc_scene_multipliers(const ffc_scene *s, int pair, long cap, double lam[], 
  * the mean longest facet edge of its slave and of its master surface, in
  * the reference configuration (length); FFC_ERR_EMPTY without pairs. */
 int ffc_scene_facet_size(const ffc_scene *s, int pair, double *h);
+
+/* Plane-strain modulus E' = E / (1 - nu^2) = 4 mu (lambda + mu) / (lambda + 2 mu)
+ * from Lame's constants (force/length^2). */
+double ffc_plane_modulus(double lame1, double lame2);
+
+/* Automatic penalty of pair k from the plane-strain modulus of the body
+ * behind each facet, Ep_s[nfs] and Ep_m[nfm] (in the pair's facet order):
+ *     eps_N = 200 / (1 / k_s + 1 / k_m),   k = mean over a side's facets of E' / h,
+ * h the facet's longest edge.  k is the stiffness of one element layer
+ * under that side; the two layers act in series.  For equal bodies and
+ * facets this is 100 E' / h: before augmentation a pressure p penetrates by
+ * p h / (100 E'), a hundredth of one layer's compliance, the value that
+ * needed the fewest Newton iterations on the patch and Hertz cases (10x
+ * smaller: 2-3x more augmentations; 10x larger: Newton fails on Hertz).
+ * A soft body against a stiff one gets about 200 times the soft layer's
+ * stiffness: the penetration stays a small part of the soft side's
+ * deformation.  FFC_ERR_VALUE for a modulus that is not positive. */
+int ffc_scene_auto_penalty(const ffc_scene *s, int pair, const double Ep_s[], const double Ep_m[], double *eps);
+
+/* Facets of pair k's slave (master = 0) or master side. */
+long ffc_scene_nfacets(const ffc_scene *s, int pair, int master);
 
 /* ffc_volume_check of the scene's tetrahedra at X + u. */
 int ffc_scene_check_volume(const ffc_scene *s, const double u[], long *bad);

@@ -484,7 +484,7 @@ static int common_checks(const ffc_effects *fx, const ffc_pair *P, int qdeg, lon
  * Its derivative:
  *     K = -sum_q t_q (da_q D_q + G_q dda_q^T)               (geometric)
  *       + sum_a (eps H(t_a) / W_a) B_a C_a^T                 (material)
- * with H(t_a) = 1 when lambda_a - eps g~_a >= 0 (touching counts).
+ * with H(t_a) = 1 when lambda_a - eps g~_a >= 0 (touching counts, to round-off: >= -eps 1e-12 sqrt(W_a)).
  *     B_a = sum_q N_a(q) da_q G_q,
  *     C_a = sum_q N_a(q) (da_q G_q + (g_q - g~_a) dda_q)   (= dG_a - g~_a dW_a).
  * The Uzawa update lambda_a <- t_a has the fixed point g~_a = 0 where
@@ -555,6 +555,34 @@ static void nodal_free(nodal_t *w)
 
 /* pass 1: geometry of every linked point, nodal sums and pressures; with
  * friction (lam_t != NULL) the slips and the nodal return maps */
+/* Formulation (a touching node).  A node whose trial pressure is exactly
+ * zero (the gap closed, no load yet: w->on, t_N = 0) and whose trial
+ * traction T_tr = P (lambda_T + eps_T r) vanishes sits on the kink of the
+ * return map, where the stick branch (T = T_tr, dT/dr = eps_T P,
+ * dT/dn = -(n.v) I - n v^T with v = lambda_T + eps_T r) and the slip branch
+ * (T = mu t_N e = 0, derivative 0) meet.  Both give T = 0; the stick
+ * branch's derivative is taken (an element of the generalized Jacobian,
+ * as in a semi-smooth Newton method), so that a body held only by
+ * frictional contact (a block between two others) has a regular first
+ * system; with the slip branch's it would be free to translate. */
+static void touching_stick(nfn_t *T, const double lam_t[3], double eps_t)
+{
+    double v[3], ttr[3];
+    for (int i = 0; i < 3; i++) v[i] = lam_t[i] + eps_t * T->r[i];
+    const double nv = ffc__dot(T->n, v);
+    for (int i = 0; i < 3; i++) ttr[i] = v[i] - T->n[i] * nv;
+    if (T->f.state != FFC_FRIC_OPEN || ffc__dot(ttr, ttr) != 0.0) return;
+    T->f.state = FFC_FRIC_STICK;
+    for (int i = 0; i < 3; i++) {
+        T->f.t[i] = 0.0;
+        T->f.dt_dtn[i] = 0.0;
+        for (int j = 0; j < 3; j++) {
+            T->f.dt_dr[i][j] = eps_t * ((i == j) - T->n[i] * T->n[j]);
+            T->f.dt_dn[i][j] = -nv * (i == j) - T->n[i] * v[j];
+        }
+    }
+}
+
 static int nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw[], int nq, long nl,
                          const ffc_link links[], const double lambda[], const double lam_t[], const ffc_law *law,
                          nodal_t *w, ffc_stats *stats, long *bad)
@@ -627,7 +655,9 @@ static int nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double 
             double g = w->Gn[v] / w->Wn[v];
             const double trial = lambda[v] - eps * g;
             w->tn[v] = fmax(0.0, trial);
-            w->on[v] = trial >= 0.0;
+            /* touching: the gap closed to round-off (two bodies meshed on one
+             * plane carry gaps of +-1e-17) counts as on the kink */
+            w->on[v] = trial >= -eps * 1e-12 * sqrt(w->Wn[v]);
             if (stats && w->tn[v] > 0.0 && -g > stats->max_pen_node) stats->max_pen_node = -g;
             if (!lam_t) continue;
             nfn_t *T = &w->T[v];
@@ -639,6 +669,7 @@ static int nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double 
             if (!(T->mnorm > 0.0)) continue; /* opposite normals cancel: no friction */
             int s = ffc_friction_map(T->n, lam_t + 3 * v, T->r, law->mu, law->eps_t, w->tn[v], &T->f);
             if (s) { nodal_free(w); return s; }
+            if (w->on[v] && !(w->tn[v] > 0.0)) touching_stick(T, lam_t + 3 * v, law->eps_t);
             if (stats && T->f.state != FFC_FRIC_OPEN) {
                 stats->stick += T->f.state == FFC_FRIC_STICK;
                 stats->slip += T->f.state == FFC_FRIC_SLIP;

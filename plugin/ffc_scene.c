@@ -63,7 +63,7 @@ int ffc_pair_opts_check(const ffc_pair_opts *o)
     if (ffc_quad_size(o->qdeg) < 0) return FFC_ERR_QUAD;
     if (o->nodal != 0 && o->nodal != 1) return FFC_ERR_VALUE;
     if (!finite_nonneg(o->mu) || !finite_nonneg(o->eps_t)) return FFC_ERR_VALUE;
-    if (!(o->eps_n > 0) || !isfinite(o->eps_n)) return FFC_ERR_VALUE;
+    if (!finite_nonneg(o->eps_n)) return FFC_ERR_VALUE; /* 0: not set yet */
     if (!finite_nonneg(o->search.capture_rel) || !finite_nonneg(o->search.capture_abs) ||
         !finite_nonneg(o->search.edge_tol))
         return FFC_ERR_VALUE;
@@ -330,6 +330,8 @@ int ffc_scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], 
         return FFC_ERR_VALUE;
     if (tangent != FFC_TANGENT_NONE && (!Ti || !Tj || !Tv)) return FFC_ERR_NULL;
     if (cap < 0) return FFC_ERR_SIZE;
+    for (int k = 0; k < s->np; k++)
+        if (!(s->p[k].o.eps_n > 0)) { *bad = k; return FFC_ERR_VALUE; }
     long nt = 0;
     int over = 0;
     for (int k = 0; k < s->np; k++) {
@@ -360,6 +362,8 @@ int ffc_scene_augment(ffc_scene *s, const double u[], long *bad)
     if (!bad) bad = &dummy;
     *bad = -1;
     if (!s || !u) return FFC_ERR_NULL;
+    for (int k = 0; k < s->np; k++)
+        if (!(s->p[k].o.eps_n > 0)) { *bad = k; return FFC_ERR_VALUE; }
     for (int k = 0; k < s->np; k++) {
         scene_pair *p = &s->p[k];
         ffc_pair v;
@@ -565,4 +569,44 @@ int ffc_scene_facet_size(const ffc_scene *s, int pair, double *h)
     }
     *h = r;
     return FFC_OK;
+}
+
+double ffc_plane_modulus(double lame1, double lame2)
+{
+    return 4.0 * lame2 * (lame1 + lame2) / (lame1 + 2.0 * lame2);
+}
+
+/* mean of E'_f / h_f over nf facets: the stiffness of one element layer
+ * under the surface (force/length^3) */
+static int side_stiffness(int nper, long nf, const long F[], const double X[], const double Ep[], double *k)
+{
+    double sum = 0.0;
+    for (long f = 0; f < nf; f++) {
+        const double h = mean_size(nper, 1, F + nper * f, X);
+        if (!(Ep[f] > 0) || !isfinite(Ep[f])) return FFC_ERR_VALUE;
+        if (!(h > 0)) return FFC_ERR_DEGENERATE;
+        sum += Ep[f] / h;
+    }
+    *k = sum / nf;
+    return FFC_OK;
+}
+
+int ffc_scene_auto_penalty(const ffc_scene *s, int pair, const double Ep_s[], const double Ep_m[], double *eps)
+{
+    if (!s || !Ep_s || !Ep_m || !eps) return FFC_ERR_NULL;
+    if (pair < 0 || pair >= s->np) return FFC_ERR_INDEX;
+    const scene_pair *p = &s->p[pair];
+    double ks, km;
+    int st = side_stiffness(s->nper, p->nfs, p->Fs, s->X, Ep_s, &ks);
+    if (!st) st = side_stiffness(s->nper, p->nfm, p->Fm, s->X, Ep_m, &km);
+    if (st) return st;
+    *eps = 200.0 / (1.0 / ks + 1.0 / km);
+    return FFC_OK;
+}
+
+long ffc_scene_nfacets(const ffc_scene *s, int pair, int master)
+{
+    if (!s) return FFC_ERR_NULL;
+    if (pair < 0 || pair >= s->np) return FFC_ERR_INDEX;
+    return master ? s->p[pair].nfm : s->p[pair].nfs;
 }

@@ -1578,6 +1578,7 @@ struct SceneData {
     int order = 1;          // 1: [P1,P1,P1], 2: [P2,P2,P2]
     long nn = 0;            // nodes: vertices or P2 nodes
     std::vector<std::string> labels; // per pair: "slave {..} / master {..}"
+    std::vector<std::vector<long>> tetS, tetM; // per pair: the tetrahedron behind each slave / master facet
     ~SceneData() { ffc_scene_free(s); }
 };
 
@@ -1626,6 +1627,20 @@ const double *need_scene_u(const char *fn, SceneData &d, KN<double> *u, const ch
     }
     need_finite(fn, arg, u);
     return &(*u)[0];
+}
+
+// every pair has its normal penalty
+void need_penalties(const char *fn, SceneData &d)
+{
+    for (int k = 0; k < ffc_scene_npairs(d.s); k++) {
+        ffc_pair_opts o;
+        ffc_scene_pair_opts(d.s, k, &o);
+        if (o.eps_n > 0) continue;
+        std::ostringstream s;
+        s << "pair " << k << " (" << d.labels[k] << ") has no normal penalty yet: give epsN in ffcAddPair, or set it with "
+          << "ffcSetPair(C, " << k << ", epsN = ffcAutoPenalty(C, " << k << ", lame1, lame2)) (solveScene() of scene.idp does that)";
+        fail(fn, s.str());
+    }
 }
 
 void need_not_inverted(const char *fn, SceneData &d, const double *u)
@@ -1735,8 +1750,6 @@ ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &
     o.nodal = (int)nm.integer(PO_NODAL, o.nodal);
     o.search.capture_rel = nm.real(PO_CREL, o.search.capture_rel);
     o.search.capture_abs = nm.real(PO_CABS, o.search.capture_abs);
-    if (!nm.has(PO_EPSN) && !(o.eps_n > 0))
-        fail(fn, "argument 'epsN': the normal penalty is required (e.g. epsN = contactPenalty(E, nu, h), or ffcAutoPenalty)");
     auto bad = [&](int i, double v, const char *why) {
         std::ostringstream s;
         s << "argument '" << nm.name(i) << "': " << num(v) << " " << why;
@@ -1749,7 +1762,7 @@ ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &
         if (!fx.friction)
             bad(PO_MU, o.mu, "> 0, but the scene's effects have no friction: make it with ffcScene C(Th, effects = ffcFriction)");
     }
-    if (!(o.eps_n > 0) || std::isinf(o.eps_n)) bad(PO_EPSN, o.eps_n, "must be finite and > 0 (normal penalty)");
+    if (nm.has(PO_EPSN) && (!(o.eps_n > 0) || std::isinf(o.eps_n))) bad(PO_EPSN, o.eps_n, "must be finite and > 0 (normal penalty)");
     if (!(o.eps_t >= 0) || std::isinf(o.eps_t)) bad(PO_EPST, o.eps_t, "must be finite and >= 0 (tangential penalty; 0: epsN)");
     if (ffc_quad_size(o.qdeg) < 0) bad(PO_QDEG, o.qdeg, "is not a quadrature degree (1..6)");
     if (o.nodal != 0 && o.nodal != 1) bad(PO_NODAL, o.nodal, "must be 1 (multipliers at slave nodes) or 0 (at quadrature points)");
@@ -1768,7 +1781,13 @@ long addPair(const Named &nm, FFScene *const &C, KN<long> *const &sl, KN<long> *
     need_pair_labels(fn, &S, &M);
     ffc_pair_opts o = named_pair_opts(fn, nm, d, ffc_pair_defaults());
     // the facets, from the mesh as the scene was made
-    auto select = [&](const char *arg, const KN<long> &labs, std::vector<long> &F) {
+    std::map<std::array<long, 3>, long> face;
+    for (long k = 0; k < d.m.nbe; k++) {
+        std::array<long, 3> key = {d.m.be[3 * k], d.m.be[3 * k + 1], d.m.be[3 * k + 2]};
+        std::sort(key.begin(), key.end());
+        face[key] = k;
+    }
+    auto select = [&](const char *arg, const KN<long> &labs, std::vector<long> &F, std::vector<long> &tet) {
         std::vector<long> L(labs.N()), out(3 * d.m.nbe);
         for (long i = 0; i < labs.N(); i++) L[i] = labs[i];
         long bad = -1;
@@ -1784,16 +1803,24 @@ long addPair(const Named &nm, FFScene *const &C, KN<long> *const &sl, KN<long> *
         }
         KN<long> F3(3 * (long)st);
         for (long i = 0; i < 3 * (long)st; i++) F3[i] = out[i];
+        tet.resize(st);
+        for (long f = 0; f < (long)st; f++) {
+            std::array<long, 3> key = {out[3 * f], out[3 * f + 1], out[3 * f + 2]};
+            std::sort(key.begin(), key.end());
+            tet[f] = d.m.betet[face.at(key)];
+        }
         if (d.order == 2) p2_facets(fn, d.m, d.p2, F3, F);
         else F.assign(out.begin(), out.begin() + 3 * (long)st);
         return (long)st;
     };
-    std::vector<long> Fs, Fm;
-    const long nfs = select("slaveLabs", S, Fs), nfm = select("masterLabs", M, Fm);
+    std::vector<long> Fs, Fm, tS, tM;
+    const long nfs = select("slaveLabs", S, Fs, tS), nfm = select("masterLabs", M, Fm, tM);
     long bad = -1;
     const int k = ffc_scene_add_pair(d.s, nfs, Fs.data(), nfm, Fm.data(), &o, &bad);
     if (k < 0) scene_error(fn, k, bad, "the pair");
     d.labels.push_back("slave " + labels_text(S) + " / master " + labels_text(M));
+    d.tetS.push_back(tS);
+    d.tetM.push_back(tM);
     return k;
 }
 
@@ -1911,6 +1938,7 @@ long sceneAssembleImpl(const char *fn, const Named &nm, FFScene *C, KN<double> *
     SceneData &d = need_scene(fn, C);
     const double *pu = need_scene_u(fn, d, u);
     need_not_inverted(fn, d, pu);
+    need_penalties(fn, d);
     if (!R) fail(fn, "argument 'R': array is not defined");
     const long n = 3 * d.nn;
     int tangent = FFC_TANGENT_NONE;
@@ -1998,6 +2026,7 @@ long sceneAugment(const Named &nm, FFScene *const &C, KN<double> *const &u)
     SceneData &d = need_scene(fn, C);
     const double *pu = need_scene_u(fn, d, u);
     need_not_inverted(fn, d, pu);
+    need_penalties(fn, d);
     scene_motion(fn, nm, d, 0, 1, 2);
     long bad = -1;
     int st = ffc_scene_augment(d.s, pu, &bad);
@@ -2111,6 +2140,45 @@ double sceneFacetSize(const Named &nm, FFScene *const &C)
     return h;
 }
 
+// ffcAutoPenalty(C, k, lame1, lame2): the automatic normal penalty of pair
+// k (see ffc_scene_auto_penalty) from Lame's constants per tetrahedron
+// (P0 arrays of the scene's mesh: lame1[], lame2[]).
+double sceneAutoPenalty(const Named &, FFScene *const &C, long const &k, KN<double> *const &l1, KN<double> *const &l2)
+{
+    const char *fn = "ffcAutoPenalty";
+    SceneData &d = need_scene(fn, C);
+    const int p = need_pair_index(fn, d, k, false, "k");
+    const char *arg[2] = {"lame1", "lame2"};
+    KN<double> *l[2] = {l1, l2};
+    for (int i = 0; i < 2; i++) {
+        if (!l[i]) fail(fn, std::string("argument '") + arg[i] + "': array is not defined");
+        if (l[i]->N() != d.m.nt) {
+            std::ostringstream s;
+            s << "argument '" << arg[i] << "': size " << l[i]->N() << ", expected " << d.m.nt
+              << " (one value per tetrahedron: the coefficients of a P0 function)";
+            fail(fn, s.str());
+        }
+        need_finite(fn, arg[i], l[i]);
+    }
+    std::vector<double> Ep[2];
+    const std::vector<long> *tets[2] = {&d.tetS[p], &d.tetM[p]};
+    for (int side = 0; side < 2; side++)
+        for (long t : *tets[side]) {
+            const double e = ffc_plane_modulus((*l1)[t], (*l2)[t]);
+            if (!(e > 0)) {
+                std::ostringstream s;
+                s << "tetrahedron " << t << " behind a " << (side ? "master" : "slave") << " facet of pair " << p
+                  << " has no material (lame1 = " << num((*l1)[t]) << ", lame2 = " << num((*l2)[t]) << ")";
+                fail(fn, s.str());
+            }
+            Ep[side].push_back(e);
+        }
+    double eps = 0;
+    int st = ffc_scene_auto_penalty(d.s, p, Ep[0].data(), Ep[1].data(), &eps);
+    if (st) scene_error(fn, st, -1, "the automatic penalty");
+    return eps;
+}
+
 // ffcInverted(C, u): the first tetrahedron inverted or collapsed at u, -1 if none.
 long sceneInverted(const Named &, FFScene *const &C, KN<double> *const &u)
 {
@@ -2150,6 +2218,7 @@ void init_scene()
     Global.Add("ffcPoints", "(", named<long, S, V, KNM<double> *>("ffcPoints", pair_only_names, 1, scenePoints));
     Global.Add("ffcMultipliers", "(", named<long, S, long, V>("ffcMultipliers", nullptr, 0, sceneMultipliers));
     Global.Add("ffcInverted", "(", named<long, S, V>("ffcInverted", nullptr, 0, sceneInverted));
+    Global.Add("ffcAutoPenalty", "(", named<double, S, long, V, V>("ffcAutoPenalty", nullptr, 0, sceneAutoPenalty));
     Global.Add("ffcFacetSize", "(", named<double, S>("ffcFacetSize", pair_only_names, 1, sceneFacetSize));
 }
 

@@ -60,8 +60,6 @@ static ffc_scene *make(int which, int friction)
     ffc_effects fx = {friction, 0, 0};
     ffc_scene *s = NULL;
     assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_OK);
-    ffc_pair_opts none = ffc_pair_defaults(); /* eps_n 0: refused, nothing added */
-    assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &none, &bad), FFC_ERR_VALUE);
     ffc_pair_opts o0 = opts(friction ? 0.3 : 0.0), o1 = opts(0.0);
     if (which & 1) assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o0, &bad), 0);
     if (which & 2) assert_int_equal(ffc_scene_add_pair(s, 2, Fs1, 2, Fm1, &o1, &bad), (which & 1) ? 1 : 0);
@@ -255,6 +253,62 @@ static void test_friction_per_pair(void **state)
     ffc_scene_free(s);
 }
 
+/* A touching slave (gap exactly 0, no multiplier yet) with friction holds
+ * tangentially in the tangent (the stick branch at the kink of the return
+ * map): the x rows of its nodes get eps_T times their area, while the
+ * residual stays zero; without friction those rows stay empty. */
+static void test_touching_stick(void **state)
+{
+    (void)state;
+    double X[3 * NV], u[3 * NV] = {0}, R[3 * NV];
+    long Fs0[6], Fm0[6], Fs1[6], Fm1[6], bad, nt;
+    geometry(X, Fs0, Fm0, Fs1, Fm1);
+    square(0.0, X, 0); /* pair 0's slave touches its master */
+    for (int mu10 = 0; mu10 <= 3; mu10 += 3) {
+        ffc_effects fx = {1, 0, 0};
+        ffc_scene *s = NULL;
+        assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_OK);
+        ffc_pair_opts o = opts(0.1 * mu10);
+        assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), 0);
+        assert_int_equal(ffc_scene_search(s, u, NULL, NULL), FFC_OK);
+        long Ti[4096], Tj[4096];
+        double Tv[4096], kxx = 0.0;
+        memset(R, 0, sizeof R);
+        assert_int_equal(ffc_scene_assemble(s, u, FFC_TANGENT_CONSISTENT, R, 4096, Ti, Tj, Tv, &nt, NULL), FFC_OK);
+        for (long k = 0; k < nt; k++)
+            if (Ti[k] % 3 == 0 && Ti[k] < 12 && Tj[k] % 3 == 0 && Tj[k] < 12) kxx += Tv[k];
+        for (int i = 0; i < 3 * NV; i++) assert_close(R[i], 0.0, 0.0);
+        /* the slave's x block sums to eps_T times the unit area: a rigid
+         * slip r of the slave is resisted by eps_T r A */
+        assert_close(kxx, mu10 ? EPS : 0.0, 1e-9 * EPS);
+        ffc_scene_free(s);
+    }
+}
+
+/* The automatic penalty: 200 / (1/k_s + 1/k_m), k = mean E'/h of a side;
+ * the unit squares' triangles have h = sqrt(2). Equal sides: 100 E' / h;
+ * a soft slave on a stiff master: 200 k_s, to 1e-6 relative. */
+static void test_auto_penalty(void **state)
+{
+    (void)state;
+    ffc_scene *s = make(1, 0);
+    const double h = sqrt(2.0), E = 1000.0;
+    double Es[2] = {E, E}, Em[2] = {E, E}, eps = 0;
+    assert_int_equal(ffc_scene_auto_penalty(s, 0, Es, Em, &eps), FFC_OK);
+    assert_close(eps, 100 * E / h, 1e-9 * eps);
+    double soft[2] = {1, 1}, stiff[2] = {1e6, 1e6};
+    assert_int_equal(ffc_scene_auto_penalty(s, 0, soft, stiff, &eps), FFC_OK);
+    assert_close(eps, 200 / h, 1e-6 * 200 / h);
+    /* the modulus of Lame's constants: E' = E / (1 - nu^2) */
+    const double nu = 0.3, l = E * nu / ((1 + nu) * (1 - 2 * nu)), m = E / (2 * (1 + nu));
+    assert_close(ffc_plane_modulus(l, m), E / (1 - nu * nu), 1e-12 * E);
+    soft[1] = 0;
+    assert_int_equal(ffc_scene_auto_penalty(s, 0, soft, stiff, &eps), FFC_ERR_VALUE);
+    assert_int_equal(ffc_scene_auto_penalty(s, 1, Es, Em, &eps), FFC_ERR_INDEX);
+    assert_int_equal(ffc_scene_nfacets(s, 0, 0), 2);
+    ffc_scene_free(s);
+}
+
 static void test_bad_input(void **state)
 {
     (void)state;
@@ -281,7 +335,19 @@ static void test_bad_input(void **state)
     assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), FFC_ERR_INDEX);
     assert_int_equal(bad, 4);
     Fm0[4] = 6;
+    o.eps_n = -1;
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), FFC_ERR_VALUE);
+    /* eps_n 0: added, but no assembly or augmentation until it is set */
+    o.eps_n = 0;
     assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), 0);
+    double u0[3 * NV] = {0}, R0[3 * NV] = {0};
+    long nt0;
+    assert_int_equal(ffc_scene_assemble(s, u0, FFC_TANGENT_NONE, R0, 0, NULL, NULL, NULL, &nt0, &bad), FFC_ERR_VALUE);
+    assert_int_equal(bad, 0);
+    assert_int_equal(ffc_scene_augment(s, u0, &bad), FFC_ERR_VALUE);
+    o.eps_n = EPS;
+    assert_int_equal(ffc_scene_set_pair_opts(s, 0, &o), FFC_OK);
+    assert_int_equal(ffc_scene_assemble(s, u0, FFC_TANGENT_NONE, R0, 0, NULL, NULL, NULL, &nt0, &bad), FFC_OK);
     assert_int_equal(ffc_scene_stat(s, 0, "noSuchStatistic", 0, &v), FFC_ERR_LABEL);
     assert_int_equal(ffc_scene_stat(s, 1, "maxPen", 0, &v), FFC_ERR_INDEX);
     assert_int_equal(ffc_scene_stat(s, -1, "maxPen", 0, &v), FFC_OK);
@@ -305,6 +371,8 @@ int main(void)
         cmocka_unit_test(test_assembly_is_sum),
         cmocka_unit_test(test_commit_restore),
         cmocka_unit_test(test_friction_per_pair),
+        cmocka_unit_test(test_touching_stick),
+        cmocka_unit_test(test_auto_penalty),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
