@@ -1,5 +1,6 @@
 #!/bin/sh
-# outside.sh: scripts/ff run from outside the repository keeps a script's relative paths (gmshFile, results/) there.
+# outside.sh: scripts/ff run from outside the repository keeps a script's relative paths (gmshFile, results/) there;
+# README's own scene runs there as pasted.
 repo=$(cd "$(dirname "$0")/.." && pwd)
 tmp=$(mktemp -d) || exit 2
 trap 'rm -rf "$tmp"' EXIT
@@ -43,8 +44,15 @@ i1=$(ino); run; i2=$(ino)
 touch cube.geo; run; i3=$(ino)
 [ "$i2" != "$i3" ] || fail "cached mesh kept although the .geo is newer"
 
+# the scene of README "Your own scene", pasted into a file here: it runs
+# with default settings and writes its JSON here
+awk '/^## Your own scene/{f=1} f&&/^```$/&&c==1{exit} f&&c==1{print} f&&/^```$/{c=1}' "$repo/README.md" > my-scene.edp
+[ "$(wc -l < my-scene.edp)" -le 40 ] || fail "README's scene has more than 40 lines"
+sh "$repo/scripts/ff" my-scene.edp >log 2>&1 || fail "README's scene: exit $? ($(tail -1 log))"
+grep -q '"converged": 1' results/my-scene.json 2>/dev/null || fail "README's scene wrote no converged results/my-scene.json"
+
 # nothing written into the repository (results/ is git-ignored: look for
 # the files themselves)
-new=$(find "$repo" -path "$repo/.git" -prune -o \( -name out.txt -o -name .ffc-cache -o -name 'cube-*.msh' \) -newer "$tmp/start" -print)
+new=$(find "$repo" -path "$repo/.git" -prune -o \( -name out.txt -o -name my-scene.json -o -name .ffc-cache -o -name 'cube-*.msh' \) -newer "$tmp/start" -print)
 [ -z "$new" ] || fail "written into the repository: $(echo $new)"
 exit 0
