@@ -2179,6 +2179,22 @@ double sceneAutoPenalty(const Named &, FFScene *const &C, long const &k, KN<doub
     return eps;
 }
 
+// ffcMultipliers(C, k, lambda, lambdaT): with the tangential multipliers
+// (3 per node or point: the traction T of the last augmentation).
+long sceneMultipliersT(const Named &nm, FFScene *const &C, long const &k, KN<double> *const &lam, KN<double> *const &lamT)
+{
+    const char *fn = "ffcMultipliers";
+    const long n = sceneMultipliers(nm, C, k, lam);
+    if (!lamT) fail(fn, "argument 'lambdaT': array is not defined");
+    SceneData &d = need_scene(fn, C);
+    std::vector<double> l(n + 1), lt(3 * n + 1);
+    long m = 0;
+    ffc_scene_multipliers(d.s, (int)k, n, l.data(), lt.data(), &m);
+    lamT->resize(3 * n);
+    for (long i = 0; i < 3 * n; i++) (*lamT)[i] = lt[i];
+    return n;
+}
+
 // ffcInverted(C, u): the first tetrahedron inverted or collapsed at u, -1 if none.
 long sceneInverted(const Named &, FFScene *const &C, KN<double> *const &u)
 {
@@ -2217,6 +2233,7 @@ void init_scene()
     Global.Add("ffcStat", "(", named<double, S, string *>("ffcStat", stat_names, 2, sceneStat));
     Global.Add("ffcPoints", "(", named<long, S, V, KNM<double> *>("ffcPoints", pair_only_names, 1, scenePoints));
     Global.Add("ffcMultipliers", "(", named<long, S, long, V>("ffcMultipliers", nullptr, 0, sceneMultipliers));
+    Global.Add("ffcMultipliers", "(", named<long, S, long, V, V>("ffcMultipliers", nullptr, 0, sceneMultipliersT));
     Global.Add("ffcInverted", "(", named<long, S, V>("ffcInverted", nullptr, 0, sceneInverted));
     Global.Add("ffcAutoPenalty", "(", named<double, S, long, V, V>("ffcAutoPenalty", nullptr, 0, sceneAutoPenalty));
     Global.Add("ffcFacetSize", "(", named<double, S>("ffcFacetSize", pair_only_names, 1, sceneFacetSize));
