@@ -81,6 +81,7 @@ bench: bench-search
 ASAN := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
 $(B)/asan/libffc.a: $(CSRC) $(HDRS)
 	@mkdir -p $(B)/asan
+	@rm -f $(B)/asan/*.o $@
 	cd $(B)/asan && for f in $(CSRC); do clang -std=c11 -Wall -Wextra -Werror -I$(CURDIR)/include $(ASAN) -c $(CURDIR)/$$f || exit 1; done
 	ar rcs $@ $(B)/asan/*.o
 $(B)/asan/test_%: tests/c/test_%.c tests/c/ffc_test.h $(B)/asan/libffc.a

@@ -429,7 +429,7 @@ typedef struct {
  * tangential multipliers, 3 per node [nv*3] or per link [nl*3] likewise
  * (read only with friction on and law->mu > 0, NULL allowed otherwise;
  * the tangent is then non-symmetric).  The nodal law applies the return
- * map at the nodes to the weighted slip (see ffc_link.c).
+ * map at the nodes to the weighted slip (see ffc_nodal.c).
  * *ntrip is the number of triplets written, or the number needed when
  * FFC_ERR_CAPACITY is returned (R is then incomplete).
  * On error *bad is the link at fault. */

@@ -285,10 +285,20 @@ int ffc_scene_search(ffc_scene *s, const double u[], long *linked, long *bad)
     return FFC_OK;
 }
 
+/* What the kernels take for one pair: its nodes, its law, its effects. */
+typedef struct {
+    ffc_pair v;
+    ffc_law law;
+    ffc_effects fx;
+} pair_call;
+
 /* The kernels' view of pair p at displacement u, and its law. */
-static void pair_view(const ffc_scene *s, const scene_pair *p, const double u[], int tangent, ffc_pair *v,
-                      ffc_law *law, ffc_effects *fx)
+static pair_call pair_view(const ffc_scene *s, const scene_pair *p, const double u[], int tangent)
 {
+    pair_call c;
+    ffc_pair *v = &c.v;
+    ffc_law *law = &c.law;
+    ffc_effects *fx = &c.fx;
     v->ns = v->nm = s->nper;
     v->nfs = p->nfs;
     v->Fs = p->Fs;
@@ -309,6 +319,16 @@ static void pair_view(const ffc_scene *s, const scene_pair *p, const double u[],
     law->dvdu = s->dvdu;
     *fx = s->fx;
     fx->friction = p->o.mu > 0; /* a frictionless pair computes no friction term */
+    return c;
+}
+
+/* 1 when every pair has its normal penalty; else 0 with *bad = the first
+ * pair without one. */
+static int penalties_set(const ffc_scene *s, long *bad)
+{
+    for (int k = 0; k < s->np; k++)
+        if (!(s->p[k].o.eps_n > 0)) { *bad = k; return 0; }
+    return 1;
 }
 
 /* Keep the augmentation's own statistics across an assembly. */
@@ -330,20 +350,16 @@ int ffc_scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], 
         return FFC_ERR_VALUE;
     if (tangent != FFC_TANGENT_NONE && (!Ti || !Tj || !Tv)) return FFC_ERR_NULL;
     if (cap < 0) return FFC_ERR_SIZE;
-    for (int k = 0; k < s->np; k++)
-        if (!(s->p[k].o.eps_n > 0)) { *bad = k; return FFC_ERR_VALUE; }
+    if (!penalties_set(s, bad)) return FFC_ERR_VALUE;
     long nt = 0;
     int over = 0;
     for (int k = 0; k < s->np; k++) {
         scene_pair *p = &s->p[k];
-        ffc_pair v;
-        ffc_law law;
-        ffc_effects fx;
-        pair_view(s, p, u, tangent, &v, &law, &fx);
+        const pair_call c = pair_view(s, p, u, tangent);
         const long room = over || nt > cap ? 0 : cap - nt;
         long n = 0;
         ffc_stats old = p->st;
-        int st = ffc_assemble(&fx, &v, p->o.qdeg, p->nl, p->links, p->lam, p->lam_t, &law, R, room,
+        int st = ffc_assemble(&c.fx, &c.v, p->o.qdeg, p->nl, p->links, p->lam, p->lam_t, &c.law, R, room,
                               tangent == FFC_TANGENT_NONE ? NULL : Ti + (over ? 0 : nt),
                               tangent == FFC_TANGENT_NONE ? NULL : Tj + (over ? 0 : nt),
                               tangent == FFC_TANGENT_NONE ? NULL : Tv + (over ? 0 : nt), &n, &p->st, bad);
@@ -362,15 +378,11 @@ int ffc_scene_augment(ffc_scene *s, const double u[], long *bad)
     if (!bad) bad = &dummy;
     *bad = -1;
     if (!s || !u) return FFC_ERR_NULL;
-    for (int k = 0; k < s->np; k++)
-        if (!(s->p[k].o.eps_n > 0)) { *bad = k; return FFC_ERR_VALUE; }
+    if (!penalties_set(s, bad)) return FFC_ERR_VALUE;
     for (int k = 0; k < s->np; k++) {
         scene_pair *p = &s->p[k];
-        ffc_pair v;
-        ffc_law law;
-        ffc_effects fx;
-        pair_view(s, p, u, FFC_TANGENT_NONE, &v, &law, &fx);
-        int st = ffc_augment(&fx, &v, p->o.qdeg, p->nl, p->links, p->lam, p->lam_t, &law, &p->st, bad);
+        const pair_call c = pair_view(s, p, u, FFC_TANGENT_NONE);
+        int st = ffc_augment(&c.fx, &c.v, p->o.qdeg, p->nl, p->links, p->lam, p->lam_t, &c.law, &p->st, bad);
         if (st) return st;
     }
     return FFC_OK;
@@ -507,11 +519,8 @@ int ffc_scene_points(const ffc_scene *s, const double u[], int pair, long cap, d
     for (int k = 0; k < s->np; k++) {
         if (pair >= 0 && k != pair) continue;
         const scene_pair *p = &s->p[k];
-        ffc_pair v;
-        ffc_law law;
-        ffc_effects fx;
-        pair_view(s, p, u, FFC_TANGENT_NONE, &v, &law, &fx);
-        int st = ffc_points(&fx, &v, p->o.qdeg, p->nl, p->links, p->lam, p->lam_t, &law,
+        const pair_call c = pair_view(s, p, u, FFC_TANGENT_NONE);
+        int st = ffc_points(&c.fx, &c.v, p->o.qdeg, p->nl, p->links, p->lam, p->lam_t, &c.law,
                             P + row * FFC_POINT_COLS, bad);
         if (st) return st;
         row += p->nl;

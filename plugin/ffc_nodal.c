@@ -1,0 +1,386 @@
+/* ffc_nodal.c: the nodal (mortar-type) multiplier law: weighted nodal gaps,
+ * pressures and return maps, and the assembly of its residual and tangent. */
+#include "ffc.h"
+#include "ffc_internal.h"
+#include "ffc_link_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Formulation (nodal multipliers).  For slave node a, over the linked
+ * points q of its facets:
+ *     G_a = sum_q N_a(q) da_q g_q,   W_a = sum_q N_a(q) da_q,
+ *     g~_a = G_a / W_a (weighted gap),   t_a = <lambda_a - eps g~_a>.
+ * The pressure at a point is t_q = sum_a N_a(q) t_a and the virtual work
+ * sum_q t_q da_q dg_q gives the residual
+ *     R = -sum_q t_q da_q G_q.
+ * Its derivative:
+ *     K = -sum_q t_q (da_q D_q + G_q dda_q^T)               (geometric)
+ *       + sum_a (eps H(t_a) / W_a) B_a C_a^T                 (material)
+ * with H(t_a) = 1 when lambda_a - eps g~_a >= 0 (touching counts, to round-off: >= -eps 1e-12 sqrt(W_a)).
+ *     B_a = sum_q N_a(q) da_q G_q,
+ *     C_a = sum_q N_a(q) (da_q G_q + (g_q - g~_a) dda_q)   (= dG_a - g~_a dW_a).
+ * The Uzawa update lambda_a <- t_a has the fixed point g~_a = 0 where
+ * t_a > 0 and g~_a >= 0, lambda_a = 0 elsewhere: one constraint per slave
+ * node, the weighted-gap conditions of mortar methods.
+ *
+ * Friction, the same way: per node the weighted slip and normal
+ *     r~_a = sum_q N_a da_q r_q / W_a,   m_a = sum_q N_a da_q n_q,  n~_a = m_a / |m_a|,
+ * the return map at the node T_a = T(n~_a, lambda_T,a, r~_a, t_a), and the
+ * point traction T_q = sum_a N_a(q) T_a.  Residual R_f = sum_q da_q S_q^T T_q.
+ * Derivative: the link terms at fixed T_q (ffc__link_friction_geo) plus
+ *     sum_a Bf_a dT_a,   Bf_a = sum_q N_a da_q S_q^T  (nd x 3),
+ *     dT_a = dT/dr dr~_a + dT/dn dn~_a - dT/dt_N (eps H(t_a) / W_a) C_a^T,
+ *     dr~_a = [sum_q N_a (da_q Q_q + (r_q - r~_a) dda_q^T)] / W_a,
+ *     dn~_a = (I - n~ n~^T) / |m_a| sum_q N_a (da_q dn_q + n_q dda_q^T).
+ * The Uzawa update lambda_T,a <- T_a drives the weighted slip of sticking
+ * nodes to zero: one tangential constraint (a 2-vector) per node, as many
+ * as there are tangential unknowns (pointwise multipliers would impose
+ * more and drift). */
+
+void ffc__nodal_free(nodal_t *w)
+{
+    free(w->L);
+    free(w->Gn);
+    free(w->Wn);
+    free(w->tn);
+    free(w->on);
+    free(w->F);
+    free(w->T);
+}
+
+/* Formulation (a touching node).  A node whose trial pressure is exactly
+ * zero (the gap closed, no load yet: w->on, t_N = 0) and whose trial
+ * traction T_tr = P (lambda_T + eps_T r) vanishes sits on the kink of the
+ * return map, where the stick branch (T = T_tr, dT/dr = eps_T P,
+ * dT/dn = -(n.v) I - n v^T with v = lambda_T + eps_T r) and the slip branch
+ * (T = mu t_N e = 0, derivative 0) meet.  Both give T = 0; the stick
+ * branch's derivative is taken (an element of the generalized Jacobian,
+ * as in a semi-smooth Newton method), so that a body held only by
+ * frictional contact (a block between two others) has a regular first
+ * system; with the slip branch's it would be free to translate. */
+static void touching_stick(nfn_t *T, const double lam_t[3], double eps_t)
+{
+    double v[3], ttr[3];
+    for (int i = 0; i < 3; i++) v[i] = lam_t[i] + eps_t * T->r[i];
+    const double nv = ffc__dot(T->n, v);
+    for (int i = 0; i < 3; i++) ttr[i] = v[i] - T->n[i] * nv;
+    if (T->f.state != FFC_FRIC_OPEN || ffc__dot(ttr, ttr) != 0.0) return;
+    T->f.state = FFC_FRIC_STICK;
+    for (int i = 0; i < 3; i++) {
+        T->f.t[i] = 0.0;
+        T->f.dt_dtn[i] = 0.0;
+        for (int j = 0; j < 3; j++) {
+            T->f.dt_dr[i][j] = eps_t * ((i == j) - T->n[i] * T->n[j]);
+            T->f.dt_dn[i][j] = -nv * (i == j) - T->n[i] * v[j];
+        }
+    }
+}
+
+/* pass 1: geometry of every linked point, nodal sums and pressures; with
+ * friction (lam_t != NULL) the slips and the nodal return maps */
+int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw[], int nq, long nl,
+                       const ffc_link links[], const double lambda[], const double lam_t[], const ffc_law *law,
+                       nodal_t *w, ffc_stats *stats, long *bad)
+{
+    const double eps = law->eps_n;
+    memset(w, 0, sizeof *w);
+    long n = 0;
+    for (long k = 0; k < nl; k++) n += links[k].mf >= 0;
+    w->L = malloc((size_t)(n > 0 ? n : 1) * sizeof *w->L);
+    w->Gn = calloc((size_t)P->nv, sizeof *w->Gn);
+    w->Wn = calloc((size_t)P->nv, sizeof *w->Wn);
+    w->tn = calloc((size_t)P->nv, sizeof *w->tn);
+    w->on = calloc((size_t)P->nv, 1);
+    if (lam_t) {
+        w->F = malloc((size_t)(n > 0 ? n : 1) * sizeof *w->F);
+        w->T = calloc((size_t)P->nv, sizeof *w->T);
+    }
+    if (!w->L || !w->Gn || !w->Wn || !w->tn || !w->on || (lam_t && (!w->F || !w->T))) {
+        ffc__nodal_free(w);
+        return FFC_ERR_MEMORY;
+    }
+    for (long k = 0; k < nl; k++) {
+        const ffc_link *lk = &links[k];
+        if (lk->mf < 0) continue;
+        nlink_t *e = &w->L[w->n];
+        lnodes_t ln;
+        int s = ffc__gather_link(fx, P, nq, lk, &ln);
+        if (s) { *bad = k; ffc__nodal_free(w); return s; }
+        memcpy(e->dof, ln.dof, sizeof ln.dof);
+        e->k = k;
+        e->nd = ln.nd;
+        ffc_link_state st;
+        lgeo_t g;
+        s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), lk->xs, qw[lk->q], P->nm, CP3(ln.Xm), &st, &g,
+                               NULL);
+        if (s) { *bad = k; ffc__nodal_free(w); return s; }
+        memcpy(e->G, g.G, sizeof e->G);
+        memcpy(e->dda, g.dda, sizeof e->dda);
+        e->g = st.gap;
+        e->da = st.da;
+        for (int i = 0; i < 3; i++) e->n[i] = st.n[i];
+        /* multipliers are linear on the facet's vertices (for 6-node facets
+         * too: quadratic vertex shape functions integrate to zero, which
+         * would leave vertex nodes without weight) */
+        ffc_shape(3, lk->xs, e->N, NULL);
+        for (int a = 3; a < P->ns; a++) e->N[a] = 0.0;
+        if (lam_t) {
+            nfl_t *fl = &w->F[w->n];
+            ffc__link_slip(&g, CP3(ln.Ds), CP3(ln.Dm), fl->r);
+            ffc__link_slip_deriv(&g, CP3(ln.Dm), ffc__motion_coef(fx, law), law->material_only, fl->sw, fl->Q);
+            memcpy(fl->dn, g.dn, sizeof fl->dn);
+        }
+        for (int a = 0; a < P->ns; a++) {
+            long v = P->Fs[lk->sf * P->ns + a];
+            w->Gn[v] += e->N[a] * e->da * e->g;
+            w->Wn[v] += e->N[a] * e->da;
+            if (lam_t)
+                for (int i = 0; i < 3; i++) {
+                    w->T[v].r[i] += e->N[a] * e->da * w->F[w->n].r[i];
+                    w->T[v].n[i] += e->N[a] * e->da * e->n[i];
+                }
+        }
+        if (stats) {
+            stats->linked++;
+            if (-e->g > stats->max_pen) stats->max_pen = -e->g;
+        }
+        w->n++;
+    }
+    for (long v = 0; v < P->nv; v++)
+        if (w->Wn[v] > 0.0) {
+            double g = w->Gn[v] / w->Wn[v];
+            const double trial = lambda[v] - eps * g;
+            w->tn[v] = fmax(0.0, trial);
+            /* touching: the gap closed to round-off (two bodies meshed on one
+             * plane carry gaps of +-1e-17) counts as on the kink */
+            w->on[v] = trial >= -eps * 1e-12 * sqrt(w->Wn[v]);
+            if (stats && w->tn[v] > 0.0 && -g > stats->max_pen_node) stats->max_pen_node = -g;
+            if (!lam_t) continue;
+            nfn_t *T = &w->T[v];
+            T->mnorm = sqrt(ffc__dot(T->n, T->n));
+            for (int i = 0; i < 3; i++) {
+                T->r[i] /= w->Wn[v];
+                T->n[i] = T->mnorm > 0.0 ? T->n[i] / T->mnorm : 0.0;
+            }
+            if (!(T->mnorm > 0.0)) continue; /* opposite normals cancel: no friction */
+            int s = ffc_friction_map(T->n, lam_t + 3 * v, T->r, law->mu, law->eps_t, w->tn[v], &T->f);
+            if (s) { ffc__nodal_free(w); return s; }
+            if (w->on[v] && !(w->tn[v] > 0.0)) touching_stick(T, lam_t + 3 * v, law->eps_t);
+            if (stats && T->f.state != FFC_FRIC_OPEN) {
+                stats->stick += T->f.state == FFC_FRIC_STICK;
+                stats->slip += T->f.state == FFC_FRIC_SLIP;
+                const double tt = sqrt(ffc__dot(T->f.t, T->f.t));
+                if (tt > stats->max_tt) stats->max_tt = tt;
+                stats->dissipation += ffc__slip_scale(fx, law) * w->Wn[v] * ffc__dot(T->f.t, T->r);
+                const double rt = ffc__slip_scale(fx, law) * ffc__tangential_norm(T->r, T->n);
+                if (rt > stats->max_slip) stats->max_slip = rt;
+            }
+        }
+    return FFC_OK;
+}
+
+/* pressure at a linked point: the interpolated nodal pressure */
+double ffc__nodal_point_pressure(const ffc_pair *P, const ffc_link *lk, const nlink_t *e, const double tn[])
+{
+    double t = 0.0;
+    for (int a = 0; a < P->ns; a++) t += e->N[a] * tn[P->Fs[lk->sf * P->ns + a]];
+    return t;
+}
+
+/* traction at a linked point: the interpolated nodal tractions; *state the
+ * "largest" state of its nodes (slip > stick > open) */
+void ffc__nodal_point_traction(const ffc_pair *P, const ffc_link *lk, const nlink_t *e, const nfn_t T[],
+                               double t[3], int *state)
+{
+    t[0] = t[1] = t[2] = 0.0;
+    *state = FFC_FRIC_OPEN;
+    for (int a = 0; a < P->ns; a++) {
+        if (e->N[a] == 0.0) continue;
+        const nfn_t *Ta = &T[P->Fs[lk->sf * P->ns + a]];
+        for (int i = 0; i < 3; i++) t[i] += e->N[a] * Ta->f.t[i];
+        if (Ta->f.state > *state) *state = Ta->f.state;
+    }
+}
+
+/* statistics of a linked point of the nodal law: pressure t (counted when
+ * > 0) and friction traction Tq */
+void ffc__nodal_point_stats(ffc_stats *s, double t, const nlink_t *e, const double Tq[3])
+{
+    if (t > 0.0) ffc__stats_pressure(s, t, e->da, e->n);
+    for (int i = 0; i < 3; i++) s->force_t[i] -= Tq[i] * e->da;
+}
+
+static int emit(long *nt, long cap, long Ti[], long Tj[], double Tv[], long i, long j, double v)
+{
+    if (*nt < cap) { Ti[*nt] = i; Tj[*nt] = j; Tv[*nt] = v; }
+    (*nt)++;
+    return *nt <= cap;
+}
+
+/* per-node work arrays of the material stiffness */
+typedef struct {
+    long *start, *lst, *pos, *loc;
+    double *Bv, *Cv;            /* [maxloc] */
+    double *Bf, *Rt, *Nt;       /* [3 maxloc] friction: Bf_a, dr~_a, dn~_a */
+} nodework_t;
+
+static void nodework_free(nodework_t *k)
+{
+    free(k->start); free(k->lst); free(k->pos); free(k->loc);
+    free(k->Bv); free(k->Cv); free(k->Bf); free(k->Rt); free(k->Nt);
+}
+
+static int nodework_alloc(const ffc_pair *P, const ffc_link links[], const nodal_t *w, nodework_t *k)
+{
+    memset(k, 0, sizeof *k);
+    const long nv = P->nv;
+    k->start = calloc((size_t)nv + 1, sizeof *k->start);
+    if (!k->start) return FFC_ERR_MEMORY;
+    for (long e = 0; e < w->n; e++)
+        for (int a = 0; a < P->ns; a++) k->start[P->Fs[links[w->L[e].k].sf * P->ns + a] + 1]++;
+    for (long v = 0; v < nv; v++) k->start[v + 1] += k->start[v];
+    k->lst = malloc((size_t)(k->start[nv] > 0 ? k->start[nv] : 1) * sizeof *k->lst);
+    k->pos = malloc((size_t)3 * nv * sizeof *k->pos);
+    long *fill = calloc((size_t)nv, sizeof *fill);
+    long maxloc = 1;
+    for (long v = 0; v < nv; v++)
+        if (FFC_MAXDOF * (k->start[v + 1] - k->start[v]) > maxloc) maxloc = FFC_MAXDOF * (k->start[v + 1] - k->start[v]);
+    k->loc = malloc((size_t)maxloc * sizeof *k->loc);
+    k->Bv = malloc((size_t)maxloc * sizeof *k->Bv);
+    k->Cv = malloc((size_t)maxloc * sizeof *k->Cv);
+    if (w->T) {
+        k->Bf = malloc((size_t)3 * maxloc * sizeof *k->Bf);
+        k->Rt = malloc((size_t)3 * maxloc * sizeof *k->Rt);
+        k->Nt = malloc((size_t)3 * maxloc * sizeof *k->Nt);
+    }
+    if (!k->lst || !k->pos || !fill || !k->loc || !k->Bv || !k->Cv || (w->T && (!k->Bf || !k->Rt || !k->Nt))) {
+        free(fill);
+        nodework_free(k);
+        return FFC_ERR_MEMORY;
+    }
+    for (long e = 0; e < w->n; e++)
+        for (int a = 0; a < P->ns; a++) {
+            long v = P->Fs[links[w->L[e].k].sf * P->ns + a];
+            k->lst[k->start[v] + fill[v]++] = e;
+        }
+    free(fill);
+    for (long i = 0; i < 3 * nv; i++) k->pos[i] = -1;
+    return FFC_OK;
+}
+
+int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double qw[], int nq, long nl,
+                        const ffc_link links[], const double lambda[], const double lam_t[],
+                        const ffc_law *law, double R[], long cap, long Ti[], long Tj[], double Tv[],
+                        long *ntrip, ffc_stats *stats, long *bad)
+{
+    const double eps = law->eps_n;
+    const int material_only = law->material_only, fric = ffc__friction_on(fx, law);
+    nodal_t w;
+    int s = ffc__nodal_prepare(fx, P, qw, nq, nl, links, lambda, fric ? lam_t : NULL, law, &w, stats, bad);
+    if (s) return s;
+    const int want_k = Ti && Tj && Tv;
+    long nt = 0;
+    int ok = 1;
+    double D[FFC_MAXDOF][FFC_MAXDOF];
+    /* residual, statistics and geometric stiffness, link by link */
+    for (long e = 0; e < w.n; e++) {
+        const nlink_t *E = &w.L[e];
+        const ffc_link *lk = &links[E->k];
+        const double t = ffc__nodal_point_pressure(P, lk, E, w.tn);
+        double Tq[3] = {0, 0, 0};
+        int fs = FFC_FRIC_OPEN;
+        if (fric) ffc__nodal_point_traction(P, lk, E, w.T, Tq, &fs);
+        const int has_t = fric && (Tq[0] != 0.0 || Tq[1] != 0.0 || Tq[2] != 0.0);
+        if (!(t > 0.0) && !has_t) continue;
+        ffc__nodal_point_stats(stats, t, E, Tq);
+        for (int a = 0; a < E->nd; a++) R[E->dof[a]] -= t * E->da * E->G[a];
+        if (has_t)
+            for (int a = 0; a < E->nd; a++) R[E->dof[a]] += E->da * w.F[e].sw[a] * Tq[a % 3];
+        if (!want_k || material_only) continue;
+        lnodes_t ln;
+        s = ffc__gather_link(fx, P, nq, lk, &ln);
+        ffc_link_state sg;
+        lgeo_t g;
+        if (!s)
+            s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), lk->xs, qw[lk->q], P->nm, CP3(ln.Xm), &sg,
+                                   &g, D);
+        if (s) { *bad = E->k; ffc__nodal_free(&w); return s; }
+        for (int a = 0; a < E->nd; a++)
+            for (int b = 0; b < E->nd; b++) D[a][b] = -t * (E->da * D[a][b] + E->G[a] * E->dda[b]);
+        if (has_t) ffc__link_friction_geo(&g, E->da, w.F[e].sw, Tq, D);
+        for (int a = 0; a < E->nd; a++)
+            for (int b = 0; b < E->nd; b++)
+                if (D[a][b] != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, E->dof[a], E->dof[b], D[a][b]);
+    }
+    if (want_k) {
+        /* material stiffness, node by node: links of each slave node */
+        nodework_t k;
+        if (nodework_alloc(P, links, &w, &k)) { ffc__nodal_free(&w); return FFC_ERR_MEMORY; }
+        for (long v = 0; v < P->nv; v++) {
+            if (!w.on[v] || !(w.Wn[v] > 0.0)) continue;
+            const double W = w.Wn[v], gt = w.Gn[v] / W, c = eps / W;
+            const nfn_t *Tn = fric ? &w.T[v] : NULL;
+            const int ft = Tn && Tn->f.state != FFC_FRIC_OPEN;
+            long nloc = 0;
+            for (long m = k.start[v]; m < k.start[v + 1]; m++) {
+                const long e = k.lst[m];
+                const nlink_t *E = &w.L[e];
+                const ffc_link *lk = &links[E->k];
+                double Na = 0.0;
+                for (int a = 0; a < P->ns; a++)
+                    if (P->Fs[lk->sf * P->ns + a] == v) Na += E->N[a];
+                for (int a = 0; a < E->nd; a++) {
+                    long d = E->dof[a];
+                    if (k.pos[d] < 0) {
+                        k.pos[d] = nloc; k.loc[nloc] = d; k.Bv[nloc] = k.Cv[nloc] = 0.0;
+                        if (ft)
+                            for (int i = 0; i < 3; i++) k.Bf[3 * nloc + i] = k.Rt[3 * nloc + i] = k.Nt[3 * nloc + i] = 0.0;
+                        nloc++;
+                    }
+                    const long p = k.pos[d];
+                    k.Bv[p] += Na * E->da * E->G[a];
+                    k.Cv[p] += Na * (E->da * E->G[a] + (E->g - gt) * E->dda[a]);
+                    if (!ft) continue;
+                    const nfl_t *fl = &w.F[e];
+                    k.Bf[3 * p + a % 3] += Na * E->da * fl->sw[a];
+                    for (int i = 0; i < 3; i++) {
+                        k.Rt[3 * p + i] += Na * (E->da * fl->Q[i][a] + (fl->r[i] - Tn->r[i]) * E->dda[a]) / W;
+                        if (!material_only) k.Nt[3 * p + i] += Na * (E->da * fl->dn[i][a] + E->n[i] * E->dda[a]);
+                    }
+                }
+            }
+            for (long i = 0; i < nloc; i++)
+                for (long j = 0; j < nloc; j++)
+                    if (k.Bv[i] != 0.0 && k.Cv[j] != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[i], k.loc[j], c * k.Bv[i] * k.Cv[j]);
+            if (ft) {
+                /* dn~ = (I - n~ n~^T) / |m| (accumulated), then
+                 * dT_a = dT/dr dr~ + dT/dn dn~ - dT/dt_N c C^T, K += Bf dT_a */
+                const double *nn = Tn->n;
+                for (long j = 0; j < nloc; j++) {
+                    double *q = &k.Nt[3 * j], d = ffc__dot(nn, q);
+                    for (int i = 0; i < 3; i++) q[i] = (q[i] - nn[i] * d) / Tn->mnorm;
+                }
+                for (long j = 0; j < nloc; j++) {
+                    double dT[3];
+                    for (int i = 0; i < 3; i++) {
+                        double x = -Tn->f.dt_dtn[i] * c * k.Cv[j];
+                        for (int l = 0; l < 3; l++)
+                            x += Tn->f.dt_dr[i][l] * k.Rt[3 * j + l] + Tn->f.dt_dn[i][l] * k.Nt[3 * j + l];
+                        dT[i] = x;
+                    }
+                    for (long i = 0; i < nloc; i++) {
+                        const double x = k.Bf[3 * i] * dT[0] + k.Bf[3 * i + 1] * dT[1] + k.Bf[3 * i + 2] * dT[2];
+                        if (x != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[i], k.loc[j], x);
+                    }
+                }
+            }
+            for (long i = 0; i < nloc; i++) k.pos[k.loc[i]] = -1;
+        }
+        nodework_free(&k);
+    }
+    *ntrip = nt;
+    ffc__nodal_free(&w);
+    return ok ? FFC_OK : FFC_ERR_CAPACITY;
+}
