@@ -151,27 +151,37 @@ static int check_nodes(long n, const long F[], long nv, long *bad)
     return FFC_OK;
 }
 
-/* Multiplier arrays of the pair for its law (sizes nv or nl), zeroed. */
+/* Multiplier arrays of the pair for its law (sizes nv or nl), zeroed; on
+ * failure the pair keeps the arrays it had. */
 static int pair_alloc_lambda(scene_pair *p, long nv)
 {
+    const long n = p->o.nodal ? nv : p->nl;
+    double *l = calloc(n, sizeof *l), *l0 = calloc(n, sizeof *l0), *lt = calloc(3 * n, sizeof *lt),
+           *lt0 = calloc(3 * n, sizeof *lt0);
+    if (!l || !l0 || !lt || !lt0) {
+        free(l); free(l0); free(lt); free(lt0);
+        return FFC_ERR_MEMORY;
+    }
     free(p->lam); free(p->lam_t); free(p->lam0); free(p->lam_t0);
-    p->nlam = p->o.nodal ? nv : p->nl;
-    p->lam = calloc(p->nlam, sizeof *p->lam);
-    p->lam0 = calloc(p->nlam, sizeof *p->lam0);
-    p->lam_t = calloc(3 * p->nlam, sizeof *p->lam_t);
-    p->lam_t0 = calloc(3 * p->nlam, sizeof *p->lam_t0);
-    if (!p->lam || !p->lam0 || !p->lam_t || !p->lam_t0) return FFC_ERR_MEMORY;
+    p->nlam = n;
+    p->lam = l;
+    p->lam0 = l0;
+    p->lam_t = lt;
+    p->lam_t0 = lt0;
     return FFC_OK;
 }
 
-/* Links without a partner, at the pair's quadrature points. */
+/* Links without a partner, at the pair's quadrature points; on failure
+ * the pair keeps the links it had. */
 static int pair_alloc_links(scene_pair *p)
 {
+    const int nq = ffc_quad_size(p->o.qdeg);
+    ffc_link *links = calloc(p->nfs * nq, sizeof *links);
+    if (!links) return FFC_ERR_MEMORY;
     free(p->links);
-    p->nq = ffc_quad_size(p->o.qdeg);
-    p->nl = p->nfs * p->nq;
-    p->links = calloc(p->nl, sizeof *p->links);
-    if (!p->links) return FFC_ERR_MEMORY;
+    p->links = links;
+    p->nq = nq;
+    p->nl = p->nfs * nq;
     for (long k = 0; k < p->nl; k++) {
         p->links[k].sf = k / p->nq;
         p->links[k].q = (int)(k % p->nq);
@@ -232,10 +242,17 @@ int ffc_scene_set_pair_opts(ffc_scene *s, int k, const ffc_pair_opts *o)
     if (st) return st;
     scene_pair *p = &s->p[k];
     const int relink = o->qdeg != p->o.qdeg, relam = relink || o->nodal != p->o.nodal;
+    const ffc_pair_opts old = p->o;
     p->o = *o;
-    /* a new rule or multiplier space starts the pair's multipliers afresh */
-    if (relink && (st = pair_alloc_links(p))) return st;
-    if (relam && (st = pair_alloc_lambda(p, s->nv))) return st;
+    /* a new rule or multiplier space starts the pair's multipliers afresh
+     * (out of memory: the old options, links and multipliers stay) */
+    if (relink && (st = pair_alloc_links(p))) { p->o = old; return st; }
+    if (relam && (st = pair_alloc_lambda(p, s->nv))) {
+        p->o = old;
+        if (relink) pair_alloc_links(p); /* back to the old rule's links (smaller or equal: may fail only
+                                            where the larger one succeeded) */
+        return st;
+    }
     return FFC_OK;
 }
 

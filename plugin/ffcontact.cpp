@@ -1879,6 +1879,14 @@ double pairOption(const Named &, FFScene *const &C, long const &k, string *const
 
 long nPairs(const Named &, FFScene *const &C) { return ffc_scene_npairs(need_scene("ffcPairs", C).s); }
 
+// ffcEffects(C): the scene's effects as bits (1 friction, 2 dynamic, 4 finite deformation)
+long sceneEffects(const Named &, FFScene *const &C)
+{
+    ffc_effects fx;
+    ffc_scene_effects(need_scene("ffcEffects", C).s, &fx);
+    return fx.friction + 2L * fx.dynamic + 4L * fx.finite_def;
+}
+
 // ffcSearch(C, u): contact search of every pair at u; returns the linked points.
 long sceneSearch(const Named &, FFScene *const &C, KN<double> *const &u)
 {
@@ -1932,8 +1940,9 @@ void scene_motion(const char *fn, const Named &nm, SceneData &d, int iv, int idt
 // ("material": without the geometric terms); symmetric = 1 keeps the lower
 // triangle (CHOLMOD; frictionless small-strain scenes only). Returns the
 // active points. ffcResidual(C, u, R, [v, dt, dvdu]): R alone.
+// (iv: the position of the motion options v, dt, dvdu in the call's table)
 long sceneAssembleImpl(const char *fn, const Named &nm, FFScene *C, KN<double> *u, KN<double> *R,
-                       Matrice_Creuse<double> *K)
+                       Matrice_Creuse<double> *K, int iv)
 {
     SceneData &d = need_scene(fn, C);
     const double *pu = need_scene_u(fn, d, u);
@@ -1971,7 +1980,7 @@ long sceneAssembleImpl(const char *fn, const Named &nm, FFScene *C, KN<double> *
             if (fx.finite_def) fail(fn, "argument 'symmetric': 1, but the scene has finite deformation: its tangent is not symmetric");
         }
     }
-    scene_motion(fn, nm, d, AS_V, AS_DT, AS_DVDU);
+    scene_motion(fn, nm, d, iv, iv + 1, iv + 2);
     std::vector<double> Rc(n, 0.0);
     long nt = 0, bad = -1;
     std::vector<long> Ti, Tj;
@@ -2007,12 +2016,12 @@ long sceneAssemble(const Named &nm, FFScene *const &C, KN<double> *const &u, KN<
                    Matrice_Creuse<double> *const &K)
 {
     if (!K) fail("ffcAssemble", "argument 'K': matrix is not defined");
-    return sceneAssembleImpl("ffcAssemble", nm, C, u, R, K);
+    return sceneAssembleImpl("ffcAssemble", nm, C, u, R, K, AS_V);
 }
 
 long sceneResidual(const Named &nm, FFScene *const &C, KN<double> *const &u, KN<double> *const &R)
 {
-    return sceneAssembleImpl("ffcResidual", nm, C, u, R, nullptr);
+    return sceneAssembleImpl("ffcResidual", nm, C, u, R, nullptr, 0);
 }
 
 // ffcAugment(C, u, [v, dt, dvdu]): Uzawa update of every pair's multipliers;
@@ -2222,10 +2231,11 @@ void init_scene()
     Global.Add("ffcSetPair", "(", named<long, S, long>("ffcSetPair", pair_names, PO_N, setPair));
     Global.Add("ffcOption", "(", named<double, S, long, string *>("ffcOption", nullptr, 0, pairOption));
     Global.Add("ffcPairs", "(", named<long, S>("ffcPairs", nullptr, 0, nPairs));
+    Global.Add("ffcEffects", "(", named<long, S>("ffcEffects", nullptr, 0, sceneEffects));
     Global.Add("ffcSearch", "(", named<long, S, V>("ffcSearch", nullptr, 0, sceneSearch));
     Global.Add("ffcAssemble", "(",
                named<long, S, V, V, Matrice_Creuse<double> *>("ffcAssemble", assemble_names, AS_N, sceneAssemble));
-    Global.Add("ffcResidual", "(", named<long, S, V, V>("ffcResidual", assemble_names + 2, 3, sceneResidual));
+    Global.Add("ffcResidual", "(", named<long, S, V, V>("ffcResidual", motion_names, 3, sceneResidual));
     Global.Add("ffcAugment", "(", named<long, S, V>("ffcAugment", motion_names, 3, sceneAugment));
     Global.Add("ffcCommit", "(", named<long, S, V>("ffcCommit", nullptr, 0, sceneCommit));
     Global.Add("ffcRestore", "(", named<long, S>("ffcRestore", nullptr, 0, sceneRestore));

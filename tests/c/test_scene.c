@@ -189,6 +189,15 @@ static void test_assembly_is_sum(void **state)
         free(Ti); free(Tj); free(Tv);
     }
     assert_int_equal(need[0], need[1] + need[2]);
+    /* room for the first pair only: the count needed is still the whole */
+    {
+        long *Ti = malloc(need[1] * sizeof *Ti), *Tj = malloc(need[1] * sizeof *Tj), nt = 0;
+        double *Tv = malloc(need[1] * sizeof *Tv), Rx[3 * NV] = {0};
+        assert_int_equal(ffc_scene_assemble(both, u, FFC_TANGENT_CONSISTENT, Rx, need[1], Ti, Tj, Tv, &nt, NULL),
+                         FFC_ERR_CAPACITY);
+        assert_int_equal(nt, need[0]);
+        free(Ti); free(Tj); free(Tv);
+    }
     for (int i = 0; i < 3 * NV; i++) assert_close(R[0][i], R[1][i] + R[2][i], 1e-12);
     for (int i = 0; i < 9 * NV * NV; i++) assert_close(A[0][i], A[1][i] + A[2][i], 1e-9);
     for (int i = 0; i < 3; i++) { free(A[i]); ffc_scene_free(sc[i]); }
