@@ -143,6 +143,43 @@ void p2_arrays(const char *fn, const MeshArrays &m, P2Arrays &p)
         for (int a = 0; a < 4; a++) p.vnode[m.T[4 * k + a]] = p.node[10 * k + a];
 }
 
+// The boundary face of each (sorted) vertex triple.
+typedef std::map<std::array<long, 3>, long> FaceMap;
+FaceMap face_map(const MeshArrays &m)
+{
+    FaceMap face;
+    for (long k = 0; k < m.nbe; k++) {
+        std::array<long, 3> key = {m.be[3 * k], m.be[3 * k + 1], m.be[3 * k + 2]};
+        std::sort(key.begin(), key.end());
+        face[key] = k;
+    }
+    return face;
+}
+long face_of(const FaceMap &face, const long v[3])
+{
+    std::array<long, 3> key = {v[0], v[1], v[2]};
+    std::sort(key.begin(), key.end());
+    return face.at(key);
+}
+
+// The 6 P2 nodes of each of the nf boundary facets F3[nf*3] (vertex
+// triples) into out6[nf*6].
+void p2_facets(const char *fn, const MeshArrays &m, const P2Arrays &p2, const FaceMap &face, long nf, const long *F3,
+               long *out6)
+{
+    for (long f = 0; f < nf; f++) {
+        const long *v = F3 + 3 * f, t = m.betet[face_of(face, v)];
+        int st = ffc_p2_face(&m.T[4 * t], &p2.node[10 * t], v, out6 + 6 * f);
+        if (st) fail(fn, std::string("P2 face: ") + ffc_strerror(st));
+    }
+}
+
+// The contact tangent's triplets (Ti, Tj, Tv)[nt] of an n x n matrix handed
+// to K: duplicates summed in C (the nodal law repeats entries many times);
+// lower = 1 keeps the lower triangle, as FreeFEM's half matrices do.
+void triplets_to_matrix(const char *fn, long n, long nt, const long *Ti, const long *Tj, const double *Tv, bool lower,
+                        Matrice_Creuse<double> *K);
+
 // a real as text, NaN and Inf spelled out
 std::string num(double v)
 {
@@ -324,29 +361,11 @@ long ffcPair2(pmesh3 const &pTh, KN<long> *const &sl, KN<long> *const &ml, KN<lo
     mesh_arrays(Th, m);
     P2Arrays p2;
     p2_arrays(fn, m, p2);
-    // boundary face of each vertex triple
-    std::map<std::array<long, 3>, long> face;
-    for (long k = 0; k < m.nbe; k++) {
-        std::array<long, 3> key = {m.be[3 * k], m.be[3 * k + 1], m.be[3 * k + 2]};
-        std::sort(key.begin(), key.end());
-        face[key] = k;
-    }
+    const FaceMap face = face_map(m);
     CP->resize(CP_HEAD + 6 * nfs + 6 * nfm);
     (*CP)[0] = 6; (*CP)[1] = nfs; (*CP)[2] = 6; (*CP)[3] = nfm;
-    long pos = CP_HEAD;
-    for (int side = 0; side < 2; side++) {
-        const KN<long> &F = side ? F3m : F3s;
-        for (long f = 0; f < F.N() / 3; f++) {
-            long v[3] = {F[3 * f], F[3 * f + 1], F[3 * f + 2]};
-            std::array<long, 3> key = {v[0], v[1], v[2]};
-            std::sort(key.begin(), key.end());
-            const long k = face.at(key), t = m.betet[k];
-            long out[6];
-            int st = ffc_p2_face(&m.T[4 * t], &p2.node[10 * t], v, out);
-            if (st) fail(fn, std::string("P2 face: ") + ffc_strerror(st));
-            for (int a = 0; a < 6; a++) (*CP)[pos++] = out[a];
-        }
-    }
+    p2_facets(fn, m, p2, face, nfs, &F3s[0], &(*CP)[CP_HEAD]);
+    p2_facets(fn, m, p2, face, nfm, &F3m[0], &(*CP)[CP_HEAD + 6 * nfs]);
     return nfs;
 }
 
@@ -761,6 +780,20 @@ void link_error(const char *fn, int st, long bad)
     fail(fn, s.str());
 }
 
+void triplets_to_matrix(const char *fn, long n, long nt, const long *Ti, const long *Tj, const double *Tv, bool lower,
+                        Matrice_Creuse<double> *K)
+{
+    std::vector<long> Ci(nt > 0 ? nt : 1), Cj(nt > 0 ? nt : 1), rp(n + 1), wk(n);
+    std::vector<double> Cv(nt > 0 ? nt : 1);
+    const long nz = ffc_triplets_sum(n, nt, Ti, Tj, Tv, Ci.data(), Cj.data(), Cv.data(), rp.data(), wk.data());
+    if (nz < 0) fail(fn, std::string("the contact tangent: ") + ffc_strerror((int)nz));
+    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, (int)std::min(nz, 1L << 30), lower ? 1 : 0);
+    for (long t = 0; t < nz; t++)
+        if (!lower || Ci[t] >= Cj[t]) (*h)((int)Ci[t], (int)Cj[t]) += Cv[t];
+    K->A.master(h);
+    K->typemat = 0;
+}
+
 // ffcAssemble(Th, u, [uprev,] CP, L, lambda, [lambdaT,] opt, R, K): adds
 // the contact residual into R (size 3 nv) and sets K to the contact
 // tangent (non-symmetric with friction); returns the number of active
@@ -806,19 +839,7 @@ long assemble(const char *fn, pmesh3 pTh, KN<double> *u, KN<double> *up, KN<long
     }
     if (rc) link_error(fn, rc, bad);
     for (long i = 0; i < n; i++) (*R)[i] += Rc[i];
-    // duplicates summed in C (the nodal law repeats entries many times), then
-    // handed over; symmetric storage keeps the lower triangle, as FreeFEM's
-    // half matrices do
-    std::unique_ptr<long[]> Ci(new long[nt > 0 ? nt : 1]), Cj(new long[nt > 0 ? nt : 1]), rp(new long[n + 1]),
-        wk(new long[n]);
-    std::unique_ptr<double[]> Cv(new double[nt > 0 ? nt : 1]);
-    const long nz = ffc_triplets_sum(n, nt, Ti.get(), Tj.get(), Tv.get(), Ci.get(), Cj.get(), Cv.get(), rp.get(), wk.get());
-    if (nz < 0) link_error(fn, (int)nz, -1);
-    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, (int)std::min(nz, 1L << 30), o.lower ? 1 : 0);
-    for (long t = 0; t < nz; t++)
-        if (!o.lower || Ci[t] >= Cj[t]) (*h)((int)Ci[t], (int)Cj[t]) += Cv[t];
-    K->A.master(h);
-    K->typemat = 0;
+    triplets_to_matrix(fn, n, nt, Ti.get(), Tj.get(), Tv.get(), o.lower, K);
     return st.active;
 }
 
@@ -1574,6 +1595,7 @@ public:
 struct SceneData {
     ffc_scene *s = nullptr;
     MeshArrays m;
+    FaceMap face;           // boundary face of each vertex triple
     P2Arrays p2;
     int order = 1;          // 1: [P1,P1,P1], 2: [P2,P2,P2]
     long nn = 0;            // nodes: vertices or P2 nodes
@@ -1681,6 +1703,7 @@ FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh)
     std::unique_ptr<SceneData> d(new SceneData);
     mesh_arrays(Th, d->m);
     if (d->m.nbe == 0) fail(fn, "argument 'Th': the mesh has no boundary faces");
+    d->face = face_map(d->m);
     d->order = (int)order;
     const double *X = d->m.X.data();
     std::vector<long> T = d->m.T;
@@ -1705,27 +1728,6 @@ KN<long> side_labels(const char *fn, const char *arg, KN<long> *l)
     if (!l) fail(fn, std::string("argument '") + arg + "': array is not defined");
     if (l->N() == 0) fail(fn, std::string("argument '") + arg + "': empty list of labels");
     return *l;
-}
-
-// 6-node facets of the 3-vertex boundary facets F3 (P2 scenes).
-void p2_facets(const char *fn, const MeshArrays &m, const P2Arrays &p2, const KN<long> &F3, std::vector<long> &out)
-{
-    std::map<std::array<long, 3>, long> face;
-    for (long k = 0; k < m.nbe; k++) {
-        std::array<long, 3> key = {m.be[3 * k], m.be[3 * k + 1], m.be[3 * k + 2]};
-        std::sort(key.begin(), key.end());
-        face[key] = k;
-    }
-    const long nf = F3.N() / 3;
-    out.resize(6 * nf);
-    for (long f = 0; f < nf; f++) {
-        long v[3] = {F3[3 * f], F3[3 * f + 1], F3[3 * f + 2]};
-        std::array<long, 3> key = {v[0], v[1], v[2]};
-        std::sort(key.begin(), key.end());
-        const long k = face.at(key), t = m.betet[k];
-        int st = ffc_p2_face(&m.T[4 * t], &p2.node[10 * t], v, &out[6 * f]);
-        if (st) fail(fn, std::string("P2 face: ") + ffc_strerror(st));
-    }
 }
 
 // The pair options of the named arguments (from o, the current ones).
@@ -1781,12 +1783,6 @@ long addPair(const Named &nm, FFScene *const &C, KN<long> *const &sl, KN<long> *
     need_pair_labels(fn, &S, &M);
     ffc_pair_opts o = named_pair_opts(fn, nm, d, ffc_pair_defaults());
     // the facets, from the mesh as the scene was made
-    std::map<std::array<long, 3>, long> face;
-    for (long k = 0; k < d.m.nbe; k++) {
-        std::array<long, 3> key = {d.m.be[3 * k], d.m.be[3 * k + 1], d.m.be[3 * k + 2]};
-        std::sort(key.begin(), key.end());
-        face[key] = k;
-    }
     auto select = [&](const char *arg, const KN<long> &labs, std::vector<long> &F, std::vector<long> &tet) {
         std::vector<long> L(labs.N()), out(3 * d.m.nbe);
         for (long i = 0; i < labs.N(); i++) L[i] = labs[i];
@@ -1801,16 +1797,13 @@ long addPair(const Named &nm, FFScene *const &C, KN<long> *const &sl, KN<long> *
                 s << "argument '" << arg << "': " << ffc_strerror(st) << " (face " << bad << ")";
             fail(fn, s.str());
         }
-        KN<long> F3(3 * (long)st);
-        for (long i = 0; i < 3 * (long)st; i++) F3[i] = out[i];
         tet.resize(st);
-        for (long f = 0; f < (long)st; f++) {
-            std::array<long, 3> key = {out[3 * f], out[3 * f + 1], out[3 * f + 2]};
-            std::sort(key.begin(), key.end());
-            tet[f] = d.m.betet[face.at(key)];
-        }
-        if (d.order == 2) p2_facets(fn, d.m, d.p2, F3, F);
-        else F.assign(out.begin(), out.begin() + 3 * (long)st);
+        for (long f = 0; f < (long)st; f++) tet[f] = d.m.betet[face_of(d.face, &out[3 * f])];
+        if (d.order == 2) {
+            F.resize(6 * (long)st);
+            p2_facets(fn, d.m, d.p2, d.face, st, out.data(), F.data());
+        } else
+            F.assign(out.begin(), out.begin() + 3 * (long)st);
         return (long)st;
     };
     std::vector<long> Fs, Fm, tS, tM;
@@ -1908,6 +1901,20 @@ basicAC_F0::name_and_type assemble_names[] = {{"tangent", &typeid(string *)},
                                               {"dt", &typeid(double)},
                                               {"dvdu", &typeid(double)}};
 
+// the first pair with friction (mu > 0), -1 when none has
+int frictional_pair(const SceneData &d, double *mu = nullptr)
+{
+    for (int k = 0; k < ffc_scene_npairs(d.s); k++) {
+        ffc_pair_opts o;
+        ffc_scene_pair_opts(d.s, k, &o);
+        if (o.mu > 0) {
+            if (mu) *mu = o.mu;
+            return k;
+        }
+    }
+    return -1;
+}
+
 void scene_motion(const char *fn, const Named &nm, SceneData &d, int iv, int idt, int idvdu)
 {
     ffc_effects fx;
@@ -1917,13 +1924,7 @@ void scene_motion(const char *fn, const Named &nm, SceneData &d, int iv, int idt
         if (given) fail(fn, "arguments 'v', 'dt', 'dvdu': the scene is not dynamic (effects without ffcDynamic)");
         return;
     }
-    bool fric = false;
-    for (int k = 0; k < ffc_scene_npairs(d.s); k++) {
-        ffc_pair_opts o;
-        ffc_scene_pair_opts(d.s, k, &o);
-        fric = fric || o.mu > 0;
-    }
-    if (!fric && !given) return;
+    if (frictional_pair(d) < 0 && !given) return;
     if (!nm.has(iv) || !nm.has(idt) || !nm.has(idvdu))
         fail(fn, "arguments 'v', 'dt', 'dvdu': a dynamic scene with friction needs the velocity at the end of the step, the step and dv/du");
     const double *v = need_scene_u(fn, d, nm.array(iv), "v");
@@ -1967,15 +1968,12 @@ long sceneAssembleImpl(const char *fn, const Named &nm, FFScene *C, KN<double> *
         if (lower) {
             ffc_effects fx;
             ffc_scene_effects(d.s, &fx);
-            for (int k = 0; k < ffc_scene_npairs(d.s); k++) {
-                ffc_pair_opts o;
-                ffc_scene_pair_opts(d.s, k, &o);
-                if (o.mu > 0) {
-                    std::ostringstream s;
-                    s << "argument 'symmetric': 1, but pair " << k << " has friction (mu = " << o.mu
-                      << "): its tangent is not symmetric";
-                    fail(fn, s.str());
-                }
+            double mu = 0;
+            const int k = frictional_pair(d, &mu);
+            if (k >= 0) {
+                std::ostringstream s;
+                s << "argument 'symmetric': 1, but pair " << k << " has friction (mu = " << mu << "): its tangent is not symmetric";
+                fail(fn, s.str());
             }
             if (fx.finite_def) fail(fn, "argument 'symmetric': 1, but the scene has finite deformation: its tangent is not symmetric");
         }
@@ -1999,16 +1997,7 @@ long sceneAssembleImpl(const char *fn, const Named &nm, FFScene *C, KN<double> *
     double active = 0;
     ffc_scene_stat(d.s, -1, "active", 0, &active);
     if (!K) return (long)active;
-    std::vector<long> Ci(nt > 0 ? nt : 1), Cj(nt > 0 ? nt : 1), rp(n + 1), wk(n);
-    std::vector<double> Cv(nt > 0 ? nt : 1);
-    const long nz = ffc_triplets_sum(n, nt, Ti.data(), Tj.data(), Tv.data(), Ci.data(), Cj.data(), Cv.data(), rp.data(),
-                                     wk.data());
-    if (nz < 0) scene_error(fn, (int)nz, -1, "the contact tangent");
-    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, (int)std::min(nz, 1L << 30), lower ? 1 : 0);
-    for (long t = 0; t < nz; t++)
-        if (!lower || Ci[t] >= Cj[t]) (*h)((int)Ci[t], (int)Cj[t]) += Cv[t];
-    K->A.master(h);
-    K->typemat = 0;
+    triplets_to_matrix(fn, n, nt, Ti.data(), Tj.data(), Tv.data(), lower, K);
     return (long)active;
 }
 
