@@ -27,7 +27,8 @@ enum {
     FFC_ERR_VALUE = -12,          /* a parameter outside its admissible range */
     FFC_ERR_MEMORY = -13,         /* allocation failed */
     FFC_ERR_INVERTED = -14,       /* a facet turned inside out (normal reversed) */
-    FFC_ERR_SINGULAR = -15        /* a linear system is singular (zero pivot) */
+    FFC_ERR_SINGULAR = -15,       /* a linear system is singular (zero pivot) */
+    FFC_ERR_FUSED = -16           /* slave and master surfaces share their nodes */
 };
 
 /* Human-readable text of a status code (static string, never NULL). */
@@ -523,7 +524,8 @@ int ffc_scene_effects(const ffc_scene *s, ffc_effects *fx);
 /* Adds the pair of slave facets Fs[nfs*nper] and master facets
  * Fm[nfm*nper] (node indices; outward orientation) with options o;
  * returns its index (>= 0) or an error (FFC_ERR_INDEX: *bad = the facet
- * entry at fault). */
+ * entry at fault; FFC_ERR_FUSED: *bad = a slave facet whose vertices are
+ * all master nodes, the bodies being meshed as one). */
 int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const long Fm[],
                        const ffc_pair_opts *o, long *bad);
 

@@ -26,6 +26,7 @@ const char *ffc_strerror(int status)
     case FFC_ERR_MEMORY: return "out of memory";
     case FFC_ERR_INVERTED: return "inverted element (signed volume reversed or zero)";
     case FFC_ERR_SINGULAR: return "singular linear system (zero pivot)";
+    case FFC_ERR_FUSED: return "slave and master surfaces share their nodes";
     default: return "unknown status";
     }
 }

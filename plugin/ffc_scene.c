@@ -151,6 +151,22 @@ static int check_nodes(long n, const long F[], long nv, long *bad)
     return FFC_OK;
 }
 
+/* FFC_ERR_FUSED (*bad = the slave facet) when a slave facet's vertices are
+ * all master nodes: the two surfaces share their nodes (bodies meshed as
+ * one), and there is no contact to compute.  Facets that only share an
+ * edge or a vertex (faces of one body meeting at a corner) pass. */
+static int check_fused(int nper, long nfs, const long Fs[], long nfm, const long Fm[], long nv, long *bad)
+{
+    unsigned char *m = calloc(nv, 1);
+    if (!m) return FFC_ERR_MEMORY;
+    for (long i = 0; i < nfm * nper; i++) m[Fm[i]] = 1;
+    int st = FFC_OK;
+    for (long f = 0; f < nfs && !st; f++)
+        if (m[Fs[nper * f]] && m[Fs[nper * f + 1]] && m[Fs[nper * f + 2]]) { *bad = f; st = FFC_ERR_FUSED; }
+    free(m);
+    return st;
+}
+
 /* Multiplier arrays of the pair for its law (sizes nv or nl), zeroed; on
  * failure the pair keeps the arrays it had. */
 static int pair_alloc_lambda(scene_pair *p, long nv)
@@ -203,6 +219,7 @@ int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const 
     if (st) return st;
     if ((st = check_nodes(nfs * s->nper, Fs, s->nv, bad))) return st;
     if ((st = check_nodes(nfm * s->nper, Fm, s->nv, bad))) return st;
+    if ((st = check_fused(s->nper, nfs, Fs, nfm, Fm, s->nv, bad))) return st;
     if (s->np == s->cap) {
         int cap = s->cap ? 2 * s->cap : 4;
         scene_pair *q = realloc(s->p, cap * sizeof *q);

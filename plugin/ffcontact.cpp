@@ -1810,6 +1810,13 @@ long addPair(const Named &nm, FFScene *const &C, KN<long> *const &sl, KN<long> *
     const long nfs = select("slaveLabs", S, Fs, tS), nfm = select("masterLabs", M, Fm, tM);
     long bad = -1;
     const int k = ffc_scene_add_pair(d.s, nfs, Fs.data(), nfm, Fm.data(), &o, &bad);
+    if (k == FFC_ERR_FUSED) {
+        std::ostringstream s;
+        s << "slave facet " << bad << " (labels " << labels_text(S) << ") lies on nodes of the master surface (labels "
+          << labels_text(M) << "): the two bodies share their nodes there, meshed as one; contact needs separate nodes "
+          << "on each side (in gmsh: no BooleanFragments or Coherence between bodies in contact, no merged points)";
+        fail(fn, s.str());
+    }
     if (k < 0) scene_error(fn, k, bad, "the pair");
     d.labels.push_back("slave " + labels_text(S) + " / master " + labels_text(M));
     d.tetS.push_back(tS);

@@ -344,6 +344,11 @@ static void test_bad_input(void **state)
     assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), FFC_ERR_INDEX);
     assert_int_equal(bad, 4);
     Fm0[4] = 6;
+    /* a slave facet on master nodes: the surfaces are fused */
+    long Fused[6] = {0, 1, 2, 4, 6, 5};
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fused, 2, Fm0, &o, &bad), FFC_ERR_FUSED);
+    assert_int_equal(bad, 1);
+    assert_string_equal(ffc_strerror(FFC_ERR_FUSED), "slave and master surfaces share their nodes");
     o.eps_n = -1;
     assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), FFC_ERR_VALUE);
     /* eps_n 0: added, but no assembly or augmentation until it is set */
