@@ -516,8 +516,6 @@ int ffc_pair_opts_check(const ffc_pair_opts *o);
 int ffc_scene_create(int nper, long nv, const double X[], long nt, const long T[],
                      const ffc_effects *effects, ffc_scene **out);
 void ffc_scene_free(ffc_scene *s);
-long ffc_scene_nodes(const ffc_scene *s);
-int ffc_scene_nper(const ffc_scene *s);
 int ffc_scene_npairs(const ffc_scene *s);
 int ffc_scene_effects(const ffc_scene *s, ffc_effects *fx);
 

@@ -16,7 +16,6 @@ typedef struct {
     int nq;            /* quadrature points per slave facet */
     long nl;           /* links: nfs * nq */
     ffc_link *links;   /* [nl] */
-    int searched;      /* 1 once the links come from a search */
     long nlam;         /* multipliers: nv (nodal) or nl (pointwise) */
     double *lam, *lam_t;   /* [nlam], [3 nlam] */
     double *lam0, *lam_t0; /* the same at the last commit */
@@ -132,8 +131,6 @@ int ffc_scene_create(int nper, long nv, const double X[], long nt, const long T[
     return FFC_OK;
 }
 
-long ffc_scene_nodes(const ffc_scene *s) { return s ? s->nv : FFC_ERR_NULL; }
-int ffc_scene_nper(const ffc_scene *s) { return s ? s->nper : FFC_ERR_NULL; }
 int ffc_scene_npairs(const ffc_scene *s) { return s ? s->np : FFC_ERR_NULL; }
 
 int ffc_scene_effects(const ffc_scene *s, ffc_effects *fx)
@@ -203,7 +200,6 @@ static int pair_alloc_links(scene_pair *p)
         p->links[k].q = (int)(k % p->nq);
         p->links[k].mf = -1;
     }
-    p->searched = 0;
     return FFC_OK;
 }
 
@@ -312,7 +308,6 @@ int ffc_scene_search(ffc_scene *s, const double u[], long *linked, long *bad)
         if (st) { *bad = k; return st; }
         st = ffc_search(p->tree, s->nper, p->nfs, p->Fs, s->nv, s->x, p->o.qdeg, &p->o.search, p->nl, p->links);
         if (st < 0) { *bad = k; return st; }
-        p->searched = 1;
         total += st;
     }
     if (linked) *linked = total;
@@ -390,7 +385,7 @@ int ffc_scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], 
     for (int k = 0; k < s->np; k++) {
         scene_pair *p = &s->p[k];
         const pair_call c = pair_view(s, p, u, tangent);
-        const long room = over || nt > cap ? 0 : cap - nt;
+        const long room = over ? 0 : cap - nt;
         long n = 0;
         ffc_stats old = p->st;
         int st = ffc_assemble(&c.fx, &c.v, p->o.qdeg, p->nl, p->links, p->lam, p->lam_t, &c.law, R, room,
@@ -462,7 +457,6 @@ int ffc_scene_reset(ffc_scene *s)
         memset(&p->st, 0, sizeof p->st);
         memset(&p->st_step, 0, sizeof p->st_step);
         for (long l = 0; l < p->nl; l++) p->links[l].mf = -1;
-        p->searched = 0;
     }
     return FFC_OK;
 }

@@ -531,11 +531,12 @@ int degree_of(long nq)
 }
 
 // Effects bit mask of the script: 1 friction, 2 dynamic, 4 finite deformation.
-ffc_effects need_effects(const char *fn, long bits)
+// (arg: how the caller names the argument in a message)
+ffc_effects need_effects(const char *fn, long bits, const char *arg = "argument 'opt': effects = opt[1]")
 {
     if (bits < 0 || bits > 7) {
         std::ostringstream s;
-        s << "argument 'opt': effects = opt[1] = " << bits << " is not a set of effects (bits: 1 friction, 2 dynamic, 4 finite deformation)";
+        s << arg << " = " << bits << " is not a set of effects (bits: 1 friction, 2 dynamic, 4 finite deformation)";
         fail(fn, s.str());
     }
     ffc_effects e = {(bits & 1) ? 1 : 0, (bits & 2) ? 1 : 0, (bits & 4) ? 1 : 0};
@@ -1694,7 +1695,7 @@ FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh)
     const char *fn = "ffcScene";
     const Mesh3 &Th = need_mesh(fn, pTh);
     const long bits = nm.integer(0, 0), order = nm.integer(1, 1);
-    ffc_effects fx = need_effects(fn, bits);
+    ffc_effects fx = need_effects(fn, bits, "argument 'effects'");
     if (order != 1 && order != 2) {
         std::ostringstream s;
         s << "argument 'order': " << order << " is not 1 ([P1,P1,P1] displacement) or 2 ([P2,P2,P2])";
@@ -2114,21 +2115,36 @@ long scenePoints(const Named &nm, FFScene *const &C, KN<double> *const &u, KNM<d
     return n;
 }
 
-// ffcMultipliers(C, k, lambda): pair k's normal multipliers (one per node
-// with nodal multipliers, else one per point); returns their count.
-long sceneMultipliers(const Named &, FFScene *const &C, long const &k, KN<double> *const &lam)
+// ffcMultipliers(C, k, lambda[, lambdaT]): pair k's normal multipliers (one
+// per node with nodal multipliers, else one per point) and, when asked, the
+// tangential ones (3 each: the traction of the last augmentation); returns
+// their count. Both arrays are checked before either is written.
+long multipliers_out(FFScene *C, long k, KN<double> *lam, KN<double> *lamT, bool tangential)
 {
     const char *fn = "ffcMultipliers";
     SceneData &d = need_scene(fn, C);
     const int p = need_pair_index(fn, d, k, false, "k");
     if (!lam) fail(fn, "argument 'lambda': array is not defined");
+    if (tangential && !lamT) fail(fn, "argument 'lambdaT': array is not defined");
     long n = 0;
     ffc_scene_multipliers(d.s, p, 0, nullptr, nullptr, &n);
-    std::vector<double> l(n + 1);
-    ffc_scene_multipliers(d.s, p, n, l.data(), nullptr, &n);
+    std::vector<double> l(n + 1), lt(3 * n + 1);
+    ffc_scene_multipliers(d.s, p, n, l.data(), lt.data(), &n);
     lam->resize(n);
     for (long i = 0; i < n; i++) (*lam)[i] = l[i];
+    if (tangential) {
+        lamT->resize(3 * n);
+        for (long i = 0; i < 3 * n; i++) (*lamT)[i] = lt[i];
+    }
     return n;
+}
+long sceneMultipliers(const Named &, FFScene *const &C, long const &k, KN<double> *const &lam)
+{
+    return multipliers_out(C, k, lam, nullptr, false);
+}
+long sceneMultipliersT(const Named &, FFScene *const &C, long const &k, KN<double> *const &lam, KN<double> *const &lamT)
+{
+    return multipliers_out(C, k, lam, lamT, true);
 }
 
 // ffcFacetSize(C, pair = -1): the contact mesh size of a pair (or the
@@ -2182,22 +2198,6 @@ double sceneAutoPenalty(const Named &, FFScene *const &C, long const &k, KN<doub
     int st = ffc_scene_auto_penalty(d.s, p, Ep[0].data(), Ep[1].data(), &eps);
     if (st) scene_error(fn, st, -1, "the automatic penalty");
     return eps;
-}
-
-// ffcMultipliers(C, k, lambda, lambdaT): with the tangential multipliers
-// (3 per node or point: the traction T of the last augmentation).
-long sceneMultipliersT(const Named &nm, FFScene *const &C, long const &k, KN<double> *const &lam, KN<double> *const &lamT)
-{
-    const char *fn = "ffcMultipliers";
-    const long n = sceneMultipliers(nm, C, k, lam);
-    if (!lamT) fail(fn, "argument 'lambdaT': array is not defined");
-    SceneData &d = need_scene(fn, C);
-    std::vector<double> l(n + 1), lt(3 * n + 1);
-    long m = 0;
-    ffc_scene_multipliers(d.s, (int)k, n, l.data(), lt.data(), &m);
-    lamT->resize(3 * n);
-    for (long i = 0; i < 3 * n; i++) (*lamT)[i] = lt[i];
-    return n;
 }
 
 // ffcInverted(C, u): the first tetrahedron inverted or collapsed at u, -1 if none.
