@@ -12,6 +12,7 @@ CFLAGS  += -std=c11 -Wall -Wextra -Werror -fPIC -Iinclude
 FFFLAGS  = -shared -fPIC -O2 -std=c++14 -DBAMG_LONG_LONG -DNCHECKPTR -DNDEBUG \
            -isystem /usr/include/freefem++ -Iinclude -Wall -Wno-unused-parameter -Wno-mismatched-new-delete
 B       := build
+CLIBS   := -lcholmod -llapack -lm
 
 CSRC    := $(wildcard plugin/*.c)
 COBJ    := $(patsubst plugin/%.c,$(B)/obj/%.o,$(CSRC))
@@ -33,11 +34,11 @@ $(B)/libffc.a: $(COBJ)
 	ar rcs $@ $^
 
 $(B)/ffcontact.so: plugin/ffcontact.cpp $(B)/libffc.a include/ffc.h
-	$(CXX) $(FFFLAGS) $< $(B)/libffc.a -lm -o $@
+	$(CXX) $(FFFLAGS) $< $(B)/libffc.a $(CLIBS) -o $@
 
 $(B)/tests/%: tests/c/%.c tests/c/ffc_test.h $(B)/libffc.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Itests/c $< $(B)/libffc.a -lcmocka -lm -o $@
+	$(CC) $(CFLAGS) -Itests/c $< $(B)/libffc.a -lcmocka $(CLIBS) -o $@
 
 ctest: $(CTESTS)
 
@@ -70,7 +71,7 @@ $(B)/meshes/%.msh: meshes/%.geo
 
 # benchmarks
 $(B)/bench_search: tests/bench/bench_search.c $(B)/libffc.a
-	$(CC) $(CFLAGS) $< $(B)/libffc.a -lm -o $@
+	$(CC) $(CFLAGS) $< $(B)/libffc.a $(CLIBS) -o $@
 
 .PHONY: bench bench-search
 bench-search: $(B)/bench_search
@@ -85,10 +86,10 @@ $(B)/asan/libffc.a: $(CSRC) $(HDRS)
 	cd $(B)/asan && for f in $(CSRC); do clang -std=c11 -Wall -Wextra -Werror -I$(CURDIR)/include $(ASAN) -c $(CURDIR)/$$f || exit 1; done
 	ar rcs $@ $(B)/asan/*.o
 $(B)/asan/test_%: tests/c/test_%.c tests/c/ffc_test.h $(B)/asan/libffc.a
-	clang -std=c11 -Wall -Wextra -Iinclude -Itests/c $(ASAN) $< $(B)/asan/libffc.a -lcmocka -lm -o $@
+	clang -std=c11 -Wall -Wextra -Iinclude -Itests/c $(ASAN) $< $(B)/asan/libffc.a -lcmocka $(CLIBS) -o $@
 $(B)/fuzz/%: tests/fuzz/%.c $(B)/asan/libffc.a
 	@mkdir -p $(B)/fuzz
-	clang -std=c11 -Iinclude -g -O1 -fsanitize=fuzzer,address,undefined $< $(B)/asan/libffc.a -lm -o $@
+	clang -std=c11 -Iinclude -g -O1 -fsanitize=fuzzer,address,undefined $< $(B)/asan/libffc.a $(CLIBS) -o $@
 
 ASAN_TESTS := $(patsubst tests/c/%.c,$(B)/asan/%,$(wildcard tests/c/test_*.c))
 FUZZ := $(patsubst tests/fuzz/%.c,$(B)/fuzz/%,$(wildcard tests/fuzz/fuzz_*.c))

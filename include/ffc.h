@@ -607,6 +607,57 @@ long ffc_scene_nfacets(const ffc_scene *s, int pair, int master);
 /* ffc_volume_check of the scene's tetrahedra at X + u. */
 int ffc_scene_check_volume(const ffc_scene *s, const double u[], long *bad);
 
+/* Bulk factorization of a small-strain scene.  The scene keeps the bulk
+ * stiffness K (n = 3 nv dofs, node-major: dof 3 i + c is component c of
+ * node i; symmetric positive definite once the Dirichlet rows carry a
+ * large diagonal, FreeFEM's tgv) and solves each Newton system
+ * (K + Kc) x = b on the contact dofs (the contact-reduced solve below):
+ * K + S is factorized (CHOLMOD) at the first solve, S = s I on the dofs of
+ * that first contact tangent (s the mean diagonal of the rows that are not
+ * Dirichlet rows: a body that only contact holds makes K singular); the
+ * compliance G of the contact dofs grows by block back-solves when Kc
+ * touches new dofs; each solve is two back-solves and a dense LU of
+ * I + G Kcc (m x m, LAPACK), then at most two steps of iterative
+ * refinement.  Dirichlet rows are those whose diagonal is at least 1e12
+ * times the median diagonal: their value is b_i / K_ii (the tgv rows'
+ * solution to within 1/tgv) and they are eliminated before the
+ * factorization, so that CHOLMOD's condition estimate shows a singular K
+ * (below 1e-12: refused). */
+typedef struct {
+    long factorizations; /* of K + S (count) */
+    long columns;        /* compliance columns computed (count) */
+    long solves;         /* ffc_scene_solve calls (count) */
+    long backsolves;     /* right-hand sides solved with the factor (count) */
+    long refinements;    /* iterative-refinement steps (count) */
+    long m;              /* contact dofs in the compliance (count) */
+    double shift;        /* s (force/length; 0: no shift) */
+    double rcond;        /* CHOLMOD's estimate of the factor's reciprocal condition (1) */
+    double residual;     /* last solve: the free rows' residual / (|b_free| + max free
+                            diagonal |x_free|), or a Dirichlet row's residual / (its
+                            diagonal |x|_inf), the larger (1) */
+} ffc_solve_info;
+
+/* Sets K from its triplets (Ti, Tj, Tv)[nt] (both triangles; duplicates
+ * summed), n = 3 nv; any factorization and compliance of an earlier K are
+ * dropped.  mmax: contact dofs a solve takes at most (its dense LU grows
+ * as m^3).  FFC_ERR_INDEX / FFC_ERR_NONFINITE (*bad = the triplet),
+ * FFC_ERR_SINGULAR for a diagonal entry that is not positive (*bad = the
+ * dof), FFC_ERR_SIZE when n is not 3 nv. */
+int ffc_scene_set_bulk(ffc_scene *s, long n, long nt, const long Ti[], const long Tj[], const double Tv[], long mmax,
+                       long *bad);
+
+/* Solves (K + Kc) x = b[n], Kc from the triplets (Ti, Tj, Tv)[nt].
+ * FFC_ERR_EMPTY without a K; FFC_ERR_INDEX / FFC_ERR_NONFINITE (*bad =
+ * the triplet, or the entry of b); FFC_ERR_CAPACITY when Kc touches more
+ * than mmax contact dofs (*bad = their count); FFC_ERR_SINGULAR when K + S
+ * is not positive definite or the solve's residual stays above 1e-6. */
+int ffc_scene_solve(ffc_scene *s, long nt, const long Ti[], const long Tj[], const double Tv[], const double b[],
+                    double x[], long *bad);
+
+/* Counters of the bulk solves since the last ffc_scene_set_bulk (zero
+ * without a K). */
+int ffc_scene_solve_info(const ffc_scene *s, ffc_solve_info *info);
+
 /* ------------------------------------- node-to-surface Lagrange multipliers */
 /* Each slave node c is paired with the master facet (i, j, k) under it:
  * area coordinates L of the foot, unit master normal n, gap

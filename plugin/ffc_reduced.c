@@ -59,52 +59,30 @@ int ffc_reduced_add(long n, long ld, long m, long dof[], double G[], const doubl
     return FFC_OK;
 }
 
+/* LAPACK (the BLAS-3 blocked LU: m reaches a few thousand) */
+void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
+void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a, const int *lda, const int *ipiv,
+             double *b, const int *ldb, int *info);
+
 /* LU with partial pivoting of the column-major A[m*m] in place, then the
- * solve of A z = b (b overwritten by z) */
+ * solve of A z = b (b overwritten by z); the pivots are kept as ints in
+ * piv's storage.  A pivot below 1e-15 of the largest entry is a singular
+ * system (rank lost to round-off). */
 static int lu_solve(long m, double A[], long piv[], double b[])
 {
+    if (m == 0) return FFC_OK;
+    if (m > 2147483647L / m) return FFC_ERR_SIZE;
     double amax = 0.0;
     for (long k = 0; k < m * m; k++) amax = fmax(amax, fabs(A[k]));
-    for (long k = 0; k < m; k++) {
-        long p = k;
-        double big = fabs(A[k + k * m]);
-        for (long i = k + 1; i < m; i++)
-            if (fabs(A[i + k * m]) > big) { big = fabs(A[i + k * m]); p = i; }
-        if (!(big > 1e-15 * amax)) return FFC_ERR_SINGULAR; /* zero (or NaN) relative to the largest entry */
-        piv[k] = p;
-        if (p != k)
-            for (long j = 0; j < m; j++) {
-                const double t = A[k + j * m];
-                A[k + j * m] = A[p + j * m];
-                A[p + j * m] = t;
-            }
-        const double d = A[k + k * m];
-        double *ck = A + k * m;
-        for (long i = k + 1; i < m; i++) ck[i] /= d;
-        for (long j = k + 1; j < m; j++) {
-            double *cj = A + j * m;
-            const double akj = cj[k];
-            if (akj == 0.0) continue;
-            for (long i = k + 1; i < m; i++) cj[i] -= ck[i] * akj;
-        }
-    }
+    if (!isfinite(amax)) return FFC_ERR_NONFINITE;
+    const int mi = (int)m, one = 1;
+    int *ip = (int *)piv, info = 0;
+    dgetrf_(&mi, &mi, A, &mi, ip, &info);
+    if (info < 0) return FFC_ERR_VALUE;
     for (long k = 0; k < m; k++)
-        if (piv[k] != k) {
-            const double t = b[k];
-            b[k] = b[piv[k]];
-            b[piv[k]] = t;
-        }
-    for (long j = 0; j < m; j++) { /* L z = b, unit lower, column by column */
-        const double bj = b[j];
-        if (bj == 0.0) continue;
-        for (long i = j + 1; i < m; i++) b[i] -= A[i + j * m] * bj;
-    }
-    for (long j = m - 1; j >= 0; j--) { /* U x = z */
-        b[j] /= A[j + j * m];
-        const double bj = b[j];
-        for (long i = 0; i < j; i++) b[i] -= A[i + j * m] * bj;
-    }
-    return FFC_OK;
+        if (!(fabs(A[k + k * m]) > 1e-15 * amax)) return FFC_ERR_SINGULAR;
+    dgetrs_("N", &mi, &one, A, &mi, ip, b, &mi, &info);
+    return info ? FFC_ERR_VALUE : FFC_OK;
 }
 
 int ffc_reduced_solve(long n, long ld, long m, const long dof[], const double G[], long nt, const long Ti[],

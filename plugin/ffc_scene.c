@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "ffc.h"
+#include "ffc_bulk.h"
 
 typedef struct {
     ffc_pair_opts o;   /* method, law and search options */
@@ -37,6 +38,7 @@ struct ffc_scene {
     double *x;         /* [nv*3] work: current positions */
     int np, cap;       /* pairs, capacity */
     scene_pair *p;     /* [cap] */
+    ffc__bulk *bulk;   /* the bulk factorization (NULL: none set) */
 };
 
 ffc_pair_opts ffc_pair_defaults(void)
@@ -92,6 +94,7 @@ void ffc_scene_free(ffc_scene *s)
     free(s->u_prev);
     free(s->v);
     free(s->x);
+    ffc__bulk_free(s->bulk);
     free(s);
 }
 
@@ -646,4 +649,32 @@ long ffc_scene_nfacets(const ffc_scene *s, int pair, int master)
     if (!s) return FFC_ERR_NULL;
     if (pair < 0 || pair >= s->np) return FFC_ERR_INDEX;
     return master ? s->p[pair].nfm : s->p[pair].nfs;
+}
+
+int ffc_scene_set_bulk(ffc_scene *s, long n, long nt, const long Ti[], const long Tj[], const double Tv[], long mmax,
+                       long *bad)
+{
+    if (!s) return FFC_ERR_NULL;
+    if (n != 3 * s->nv) return FFC_ERR_SIZE;
+    ffc__bulk *b = NULL;
+    int st = ffc__bulk_create(n, nt, Ti, Tj, Tv, mmax, &b, bad);
+    if (st) return st;
+    ffc__bulk_free(s->bulk);
+    s->bulk = b;
+    return FFC_OK;
+}
+
+int ffc_scene_solve(ffc_scene *s, long nt, const long Ti[], const long Tj[], const double Tv[], const double b[],
+                    double x[], long *bad)
+{
+    if (!s) return FFC_ERR_NULL;
+    if (!s->bulk) return FFC_ERR_EMPTY;
+    return ffc__bulk_solve(s->bulk, nt, Ti, Tj, Tv, b, x, bad);
+}
+
+int ffc_scene_solve_info(const ffc_scene *s, ffc_solve_info *info)
+{
+    if (!s || !info) return FFC_ERR_NULL;
+    ffc__bulk_info(s->bulk, info);
+    return FFC_OK;
 }

@@ -2209,6 +2209,106 @@ long sceneInverted(const Named &, FFScene *const &C, KN<double> *const &u)
     return ffc_scene_check_volume(d.s, need_scene_u(fn, d, u), &bad) == FFC_ERR_INVERTED ? bad : -1;
 }
 
+// ffcBulk(C, K, maxContactDofs = 4000): the scene keeps the bulk stiffness K
+// (small strain; Dirichlet rows with FreeFEM's tgv) for ffcSolve, which
+// factorizes it once (CHOLMOD, in C) at its first call. Returns the dofs.
+basicAC_F0::name_and_type bulk_names[] = {{"maxContactDofs", &typeid(long)}};
+
+long sceneBulk(const Named &nm, FFScene *const &C, Matrice_Creuse<double> *const &K)
+{
+    const char *fn = "ffcBulk";
+    SceneData &d = need_scene(fn, C);
+    std::vector<long> Ti, Tj;
+    std::vector<double> Tv;
+    const long n = matrix_triplets(fn, "K", K, Ti, Tj, Tv);
+    if (n != 3 * d.nn) {
+        std::ostringstream s;
+        s << "argument 'K': " << n << " x " << n << ", expected " << 3 * d.nn << " x " << 3 * d.nn
+          << " (3 dofs per node of the scene's displacement space)";
+        fail(fn, s.str());
+    }
+    const long mmax = nm.integer(0, 4000);
+    if (mmax < 0) fail(fn, "argument 'maxContactDofs': " + std::to_string(mmax) + " must be >= 0");
+    long bad = -1;
+    int st = ffc_scene_set_bulk(d.s, n, (long)Ti.size(), Ti.data(), Tj.data(), Tv.data(), mmax, &bad);
+    if (st == FFC_ERR_SINGULAR) {
+        std::ostringstream s;
+        s << "argument 'K': diagonal entry " << bad << " is not positive (a bulk stiffness is positive definite once its Dirichlet rows are set)";
+        fail(fn, s.str());
+    }
+    if (st == FFC_ERR_INDEX || st == FFC_ERR_NONFINITE) {
+        std::ostringstream s;
+        s << "argument 'K': entry (" << Ti[bad] << ", " << Tj[bad] << ") = " << num(Tv[bad]) << ": " << ffc_strerror(st);
+        fail(fn, s.str());
+    }
+    if (st) scene_error(fn, st, bad, "the bulk matrix");
+    return n;
+}
+
+// ffcSolve(C, Kc, b, x): x = (K + Kc)^-1 b with the K of ffcBulk. Returns 0
+// solved, 1 not solved (K + Kc singular: a body without support), 2 the
+// contact tangent touches more dofs than maxContactDofs (solve otherwise).
+long sceneSolve(const Named &, FFScene *const &C, Matrice_Creuse<double> *const &Kc, KN<double> *const &b,
+                KN<double> *const &x)
+{
+    const char *fn = "ffcSolve";
+    SceneData &d = need_scene(fn, C);
+    const long n = 3 * d.nn;
+    std::vector<long> Ti, Tj;
+    std::vector<double> Tv;
+    const long nk = matrix_triplets(fn, "Kc", Kc, Ti, Tj, Tv);
+    if (nk != n) {
+        std::ostringstream s;
+        s << "argument 'Kc': " << nk << " x " << nk << ", expected " << n << " x " << n;
+        fail(fn, s.str());
+    }
+    if (!b) fail(fn, "argument 'b': array is not defined");
+    if (b->N() != n) {
+        std::ostringstream s;
+        s << "argument 'b': size " << b->N() << ", expected " << n;
+        fail(fn, s.str());
+    }
+    need_finite(fn, "b", b);
+    if (!x) fail(fn, "argument 'x': array is not defined");
+    std::vector<double> xv(n), bv(n);
+    for (long i = 0; i < n; i++) bv[i] = (*b)[i];
+    long bad = -1;
+    int st = ffc_scene_solve(d.s, (long)Ti.size(), Ti.data(), Tj.data(), Tv.data(), bv.data(), xv.data(), &bad);
+    if (st == FFC_ERR_EMPTY) fail(fn, "argument 'C': no bulk matrix yet (ffcBulk(C, K) first)");
+    if (st == FFC_ERR_NONFINITE || st == FFC_ERR_INDEX) {
+        std::ostringstream s;
+        s << "argument 'Kc': entry (" << Ti[bad] << ", " << Tj[bad] << ") = " << num(Tv[bad]) << ": " << ffc_strerror(st);
+        fail(fn, s.str());
+    }
+    if (st == FFC_ERR_SINGULAR) return 1;
+    if (st == FFC_ERR_CAPACITY) return 2;
+    if (st) scene_error(fn, st, bad, "the linear solve");
+    x->resize(n);
+    for (long i = 0; i < n; i++) (*x)[i] = xv[i];
+    return 0;
+}
+
+// ffcSolverStat(C, name): a counter of the bulk solves (see ffc_solve_info).
+double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
+{
+    const char *fn = "ffcSolverStat";
+    SceneData &d = need_scene(fn, C);
+    ffc_solve_info in;
+    ffc_scene_solve_info(d.s, &in);
+    const std::string k = name ? *name : "";
+    if (k == "factorizations") return in.factorizations;
+    if (k == "columns") return in.columns;
+    if (k == "solves") return in.solves;
+    if (k == "backsolves") return in.backsolves;
+    if (k == "refinements") return in.refinements;
+    if (k == "contactDofs") return in.m;
+    if (k == "shift") return in.shift;
+    if (k == "rcond") return in.rcond;
+    if (k == "residual") return in.residual;
+    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, contactDofs, shift, rcond, residual");
+    return 0;
+}
+
 template <class R, class... A>
 NamedOp<R, A...> *named(const char *fn, basicAC_F0::name_and_type *names, int n, R (*f)(const Named &, const A &...))
 {
@@ -2243,6 +2343,10 @@ void init_scene()
     Global.Add("ffcInverted", "(", named<long, S, V>("ffcInverted", nullptr, 0, sceneInverted));
     Global.Add("ffcAutoPenalty", "(", named<double, S, long, V, V>("ffcAutoPenalty", nullptr, 0, sceneAutoPenalty));
     Global.Add("ffcFacetSize", "(", named<double, S>("ffcFacetSize", pair_only_names, 1, sceneFacetSize));
+    typedef Matrice_Creuse<double> *M;
+    Global.Add("ffcBulk", "(", named<long, S, M>("ffcBulk", bulk_names, 1, sceneBulk));
+    Global.Add("ffcSolve", "(", named<long, S, M, V, V>("ffcSolve", nullptr, 0, sceneSolve));
+    Global.Add("ffcSolverStat", "(", named<double, S, string *>("ffcSolverStat", nullptr, 0, sceneSolverStat));
 }
 
 } // namespace

@@ -1,0 +1,25 @@
+/* ffc_bulk.h: the bulk factorization a scene keeps (ffc_bulk.c); not part
+ * of the public interface (ffc_scene_set_bulk / ffc_scene_solve are). */
+#ifndef FFC_BULK_H
+#define FFC_BULK_H
+
+#include "ffc.h"
+
+typedef struct ffc__bulk ffc__bulk;
+
+/* Keeps a copy of K (n x n, triplets, both triangles; duplicates summed);
+ * nothing is factorized until the first solve.  mmax: contact dofs the
+ * solve takes at most.  FFC_ERR_INDEX / FFC_ERR_NONFINITE (*bad = the
+ * triplet), FFC_ERR_SINGULAR for a diagonal entry that is not positive
+ * (*bad = the row). */
+int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long mmax,
+                     ffc__bulk **out, long *bad);
+void ffc__bulk_free(ffc__bulk *b);
+long ffc__bulk_n(const ffc__bulk *b);
+
+/* (K + Kc) x = rhs (see ffc_scene_solve). */
+int ffc__bulk_solve(ffc__bulk *b, long nt, const long Ti[], const long Tj[], const double Tv[], const double rhs[],
+                    double x[], long *bad);
+void ffc__bulk_info(const ffc__bulk *b, ffc_solve_info *info);
+
+#endif

@@ -1,0 +1,217 @@
+/* test_bulk.c: the scene's bulk factorization: (K + Kc) x = b solved on
+ * the contact dofs against a dense elimination, a body held only by
+ * contact, the compliance grown only for new dofs, iterative refinement
+ * and bad input. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "ffc_test.h"
+
+/* 16 nodes, 48 dofs: body A = dofs 0..23 (a spring chain, dofs 0..2
+ * Dirichlet rows with diagonal TGV), body B = dofs 24..47 (a free chain:
+ * singular on its own, one rigid mode) */
+#define NV 16
+#define N (3 * NV)
+static const double TGV = 1e30, KS = 50.0;
+
+static ffc_scene *scene(void)
+{
+    double X[3 * NV];
+    for (int i = 0; i < 3 * NV; i++) X[i] = 0.1 * i;
+    ffc_effects fx = {0, 0, 0};
+    ffc_scene *s = NULL;
+    assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_OK);
+    return s;
+}
+
+/* K's triplets (both triangles) and its dense copy */
+static long bulk(long Ti[], long Tj[], double Tv[], double Kd[N * N])
+{
+    long t = 0;
+    memset(Kd, 0, sizeof(double) * N * N);
+    for (int body = 0; body < 2; body++) {
+        const int a = 24 * body;
+        for (int i = a; i < a + 23; i++) { /* springs between neighbours, stiffness KS (1 + i/10) */
+            const double k = KS * (1.0 + 0.1 * i);
+            const int p[4][2] = {{i, i}, {i + 1, i + 1}, {i, i + 1}, {i + 1, i}};
+            const double v[4] = {k, k, -k, -k};
+            for (int e = 0; e < 4; e++) { Ti[t] = p[e][0]; Tj[t] = p[e][1]; Tv[t] = v[e]; t++; }
+        }
+    }
+    for (int i = 0; i < 3; i++) { Ti[t] = i; Tj[t] = i; Tv[t] = TGV; t++; } /* Dirichlet rows */
+    for (long k = 0; k < t; k++) Kd[Ti[k] * N + Tj[k]] += Tv[k];
+    return t;
+}
+
+/* a non-symmetric contact tangent coupling the two bodies at dofs c[nc] */
+static long contact(const int c[], int nc, double scale, long Ti[], long Tj[], double Tv[])
+{
+    long t = 0;
+    uint64_t seed = 7;
+    for (int a = 0; a < nc; a++)
+        for (int b = 0; b < nc; b++) {
+            Ti[t] = c[a];
+            Tj[t] = c[b];
+            Tv[t] = scale * (a == b ? 2.0 : test_rand(&seed, -0.5, 0.5)); /* diagonally dominant */
+            t++;
+        }
+    return t;
+}
+
+/* x = A^-1 b by Gaussian elimination with partial pivoting (A destroyed) */
+static void dense_solve(double A[N * N], double b[N], double x[N])
+{
+    for (int k = 0; k < N; k++) {
+        int p = k;
+        for (int i = k + 1; i < N; i++)
+            if (fabs(A[i * N + k]) > fabs(A[p * N + k])) p = i;
+        for (int j = 0; j < N; j++) { const double t = A[k * N + j]; A[k * N + j] = A[p * N + j]; A[p * N + j] = t; }
+        const double t = b[k]; b[k] = b[p]; b[p] = t;
+        for (int i = k + 1; i < N; i++) {
+            const double f = A[i * N + k] / A[k * N + k];
+            for (int j = k; j < N; j++) A[i * N + j] -= f * A[k * N + j];
+            b[i] -= f * b[k];
+        }
+    }
+    for (int i = N - 1; i >= 0; i--) {
+        double s = b[i];
+        for (int j = i + 1; j < N; j++) s -= A[i * N + j] * x[j];
+        x[i] = s / A[i * N + i];
+    }
+}
+
+static void rhs(double b[N])
+{
+    uint64_t seed = 3;
+    for (int i = 0; i < N; i++) b[i] = test_rand(&seed, -1, 1);
+    for (int i = 0; i < 3; i++) b[i] = TGV * 0.01 * (i + 1); /* imposed values 0.01, 0.02, 0.03 */
+}
+
+/* the reduced solve against a dense solve of K + Kc, with body B held
+ * only by the contact tangent (K singular: the shift makes it factorizable) */
+static void test_matches_dense(void **state)
+{
+    (void)state;
+    ffc_scene *s = scene();
+    long Ti[200], Tj[200], ci[100], cj[100], bad = -1;
+    double Tv[200], cv[100], Kd[N * N], b[N], x[N], xd[N];
+    const long nt = bulk(Ti, Tj, Tv, Kd);
+    assert_int_equal(ffc_scene_set_bulk(s, N, nt, Ti, Tj, Tv, 1000, &bad), FFC_OK);
+    const int c[] = {20, 21, 22, 30, 31, 32};
+    const long nc = contact(c, 6, 40.0, ci, cj, cv);
+    rhs(b);
+    assert_int_equal(ffc_scene_solve(s, nc, ci, cj, cv, b, x, &bad), FFC_OK);
+    for (long k = 0; k < nc; k++) Kd[ci[k] * N + cj[k]] += cv[k];
+    double bd[N];
+    memcpy(bd, b, sizeof bd);
+    dense_solve(Kd, bd, xd);
+    double xmax = 0;
+    for (int i = 0; i < N; i++) xmax = fmax(xmax, fabs(xd[i]));
+    /* both are backward stable on a matrix of condition ~1e4 (free rows) */
+    for (int i = 0; i < N; i++) assert_close(x[i], xd[i], 1e-10 * xmax);
+    for (int i = 0; i < 3; i++) assert_close(x[i], 0.01 * (i + 1), 1e-15);
+    ffc_solve_info in;
+    assert_int_equal(ffc_scene_solve_info(s, &in), FFC_OK);
+    assert_int_equal(in.factorizations, 1);
+    assert_int_equal(in.columns, 6);
+    assert_int_equal(in.m, 6);
+    assert_true(in.shift > 0);
+    assert_true(in.residual <= 1e-13);
+    ffc_scene_free(s);
+}
+
+/* the compliance grows only for dofs Kc touches for the first time; one
+ * factorization throughout; a new K starts afresh */
+static void test_columns_grow(void **state)
+{
+    (void)state;
+    ffc_scene *s = scene();
+    long Ti[200], Tj[200], ci[100], cj[100], bad = -1;
+    double Tv[200], cv[100], Kd[N * N], b[N], x[N];
+    const long nt = bulk(Ti, Tj, Tv, Kd);
+    assert_int_equal(ffc_scene_set_bulk(s, N, nt, Ti, Tj, Tv, 1000, &bad), FFC_OK);
+    rhs(b);
+    const int c1[] = {20, 30}, c2[] = {20, 30, 31, 40};
+    long nc = contact(c1, 2, 40.0, ci, cj, cv);
+    assert_int_equal(ffc_scene_solve(s, nc, ci, cj, cv, b, x, &bad), FFC_OK);
+    assert_int_equal(ffc_scene_solve(s, nc, ci, cj, cv, b, x, &bad), FFC_OK);
+    ffc_solve_info in;
+    ffc_scene_solve_info(s, &in);
+    assert_int_equal(in.columns, 2);
+    assert_int_equal(in.solves, 2);
+    nc = contact(c2, 4, 40.0, ci, cj, cv);
+    assert_int_equal(ffc_scene_solve(s, nc, ci, cj, cv, b, x, &bad), FFC_OK);
+    ffc_scene_solve_info(s, &in);
+    assert_int_equal(in.columns, 4);
+    assert_int_equal(in.factorizations, 1);
+    assert_int_equal(in.solves, 3);
+    /* the same answer as a fresh scene that sees Kc first */
+    ffc_scene *s2 = scene();
+    double x2[N];
+    assert_int_equal(ffc_scene_set_bulk(s2, N, nt, Ti, Tj, Tv, 1000, &bad), FFC_OK);
+    assert_int_equal(ffc_scene_solve(s2, nc, ci, cj, cv, b, x2, &bad), FFC_OK);
+    double xmax = 0;
+    for (int i = 0; i < N; i++) xmax = fmax(xmax, fabs(x2[i]));
+    for (int i = 0; i < N; i++) assert_close(x[i], x2[i], 1e-10 * xmax);
+    ffc_scene_free(s2);
+    assert_int_equal(ffc_scene_set_bulk(s, N, nt, Ti, Tj, Tv, 1000, &bad), FFC_OK);
+    ffc_scene_solve_info(s, &in);
+    assert_int_equal(in.columns, 0);
+    assert_int_equal(in.factorizations, 0);
+    ffc_scene_free(s);
+}
+
+static void test_bad_input(void **state)
+{
+    (void)state;
+    ffc_scene *s = scene();
+    long Ti[200], Tj[200], ci[100], cj[100], bad = -1;
+    double Tv[200], cv[100], Kd[N * N], b[N], x[N];
+    const long nt = bulk(Ti, Tj, Tv, Kd);
+    rhs(b);
+    const int c[] = {20, 30, 31};
+    const long nc = contact(c, 3, 40.0, ci, cj, cv);
+    assert_int_equal(ffc_scene_solve(s, nc, ci, cj, cv, b, x, &bad), FFC_ERR_EMPTY);
+    assert_int_equal(ffc_scene_set_bulk(s, N - 3, nt, Ti, Tj, Tv, 1000, &bad), FFC_ERR_SIZE);
+    Ti[5] = N;
+    assert_int_equal(ffc_scene_set_bulk(s, N, nt, Ti, Tj, Tv, 1000, &bad), FFC_ERR_INDEX);
+    assert_int_equal(bad, 5);
+    Ti[5] = Tj[5];
+    Tv[7] = NAN;
+    assert_int_equal(ffc_scene_set_bulk(s, N, nt, Ti, Tj, Tv, 1000, &bad), FFC_ERR_NONFINITE);
+    assert_int_equal(bad, 7);
+    bulk(Ti, Tj, Tv, Kd);
+    assert_int_equal(ffc_scene_set_bulk(s, N, nt, Ti, Tj, Tv, 1000, &bad), FFC_OK);
+    /* body B is held by nothing: K alone is singular */
+    assert_int_equal(ffc_scene_solve(s, 0, ci, cj, cv, b, x, &bad), FFC_ERR_SINGULAR);
+    /* ... and the factorization is tried again with the next contact tangent */
+    assert_int_equal(ffc_scene_solve(s, nc, ci, cj, cv, b, x, &bad), FFC_OK);
+    ci[2] = -1;
+    assert_int_equal(ffc_scene_solve(s, nc, ci, cj, cv, b, x, &bad), FFC_ERR_INDEX);
+    assert_int_equal(bad, 2);
+    ci[2] = c[0];
+    b[9] = INFINITY;
+    assert_int_equal(ffc_scene_solve(s, nc, ci, cj, cv, b, x, &bad), FFC_ERR_NONFINITE);
+    assert_int_equal(bad, 9);
+    rhs(b);
+    /* more contact dofs than the path takes */
+    assert_int_equal(ffc_scene_set_bulk(s, N, nt, Ti, Tj, Tv, 2, &bad), FFC_OK);
+    assert_int_equal(ffc_scene_solve(s, nc, ci, cj, cv, b, x, &bad), FFC_ERR_CAPACITY);
+    assert_int_equal(bad, 3);
+    /* a diagonal that is not positive */
+    for (long k = 0; k < nt; k++)
+        if (Ti[k] == 10 && Tj[k] == 10) Tv[k] = -1e6;
+    assert_int_equal(ffc_scene_set_bulk(s, N, nt, Ti, Tj, Tv, 1000, &bad), FFC_ERR_SINGULAR);
+    assert_int_equal(bad, 10);
+    ffc_scene_free(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_matches_dense),
+        cmocka_unit_test(test_columns_grow),
+        cmocka_unit_test(test_bad_input),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
