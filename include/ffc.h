@@ -483,7 +483,10 @@ int ffc_write_columns(const char *path, const char *header, long n, int ncol,
  * dynamic and finite_def effects apply to every pair. */
 typedef struct ffc_scene ffc_scene;
 
-enum { FFC_METHOD_AL = 0 };    /* surface-to-surface augmented Lagrangian */
+enum {
+    FFC_METHOD_AL = 0,          /* surface-to-surface augmented Lagrangian */
+    FFC_METHOD_NTS = 1          /* node-to-surface Lagrange multipliers (linear facets; see ffc_nts_*) */
+};
 enum {
     FFC_TANGENT_NONE = 0,       /* residual only */
     FFC_TANGENT_CONSISTENT = 1, /* exact derivative of the residual */
@@ -501,10 +504,18 @@ typedef struct {
     double eps_t;      /* tangential penalty (force/length^3; dynamic: force*time/length^3),
                           >= 0; 0: eps_n (dynamic: eps_n dt) */
     ffc_search_opts search; /* capture distances and edge tolerance */
+    /* node-to-surface pairs (FFC_METHOD_NTS; the law's nu_s is mu) */
+    double mu_d;       /* dynamic coefficient (1), 0 <= mu_d <= mu; < 0: mu */
+    double gtol;       /* gap tolerance (length), >= 0; 0: 1e-11 x the pair's facet size */
+    double ftol;       /* tension release below -ftol x the largest normal force (1), >= 0 */
+    int max_flips;     /* state changes of a node per step before the chattering guard (>= 1) */
+    double scale;      /* row scale (force/length), >= 0; 0: the mean free diagonal of the
+                          scene's bulk matrix (ffc_scene_set_bulk) */
 } ffc_pair_opts;
 
 /* Defaults: augmented Lagrangian, qdeg 4, nodal, mu 0, eps_n 0 (must be
- * set), eps_t 0, ffc_search_defaults(). */
+ * set), eps_t 0, ffc_search_defaults(); node-to-surface: mu_d -1 (mu),
+ * gtol 0 (automatic), ftol 1e-9, max_flips 4, scale 0 (from the bulk). */
 ffc_pair_opts ffc_pair_defaults(void);
 
 /* FFC_OK, or FFC_ERR_VALUE / FFC_ERR_QUAD for an option out of range. */
@@ -557,6 +568,27 @@ int ffc_scene_augment(ffc_scene *s, const double u[], long *bad);
 int ffc_scene_commit(ffc_scene *s, const double u[]);
 int ffc_scene_restore(ffc_scene *s);
 int ffc_scene_reset(ffc_scene *s);
+
+/* Node-to-surface pairs (FFC_METHOD_NTS; a scene's pairs all use one
+ * method).  Each such pair keeps the table of its slave nodes
+ * (ffc_nts_node: state, partner facet, force), checkpointed by commit and
+ * restored by restore like the multipliers of the other method; search,
+ * assembly and augmentation pass over it.  In a step: ffc_scene_nts_step
+ * (a new step: per-step flips, kept facets and forces cleared), then
+ * repeat: ffc_scene_nts_rows (locate the nodes at u, the constraint rows
+ * of every pair stacked: see ffc_nts_rows; rows of pair k follow those of
+ * pairs < k, and a C-block column Bj >= 3 nv is shifted likewise), the
+ * saddle-point solve, ffc_scene_nts_update (locate again, forces from the
+ * multipliers m[nrows], transitions; *changes in all pairs), until no
+ * node changes, the gaps close and Coulomb's law holds (statistics
+ * "changes", "gapErr", "slideRes").  The node-to-surface law of a pair
+ * takes nu_s = mu, and mu_d, gtol, ftol, max_flips, scale from its
+ * options.  FFC_ERR_VALUE without a row scale (no option, no bulk);
+ * FFC_ERR_CAPACITY with the sizes needed in *ntrip, *nrows. */
+int ffc_scene_nts_step(ffc_scene *s);
+int ffc_scene_nts_rows(ffc_scene *s, const double u[], const double fixed[], long cap, long Bi[], long Bj[],
+                       double Bv[], double Fv[], long ccap, double c[], long *ntrip, long *nrows, long *bad);
+int ffc_scene_nts_update(ffc_scene *s, const double u[], long nrows, const double m[], long *changes, long *bad);
 
 /* Statistic `name` of pair k (k = -1: all pairs, summed or the largest)
  * from the last assembly (maxDlam, maxDlamT, maxPenNode: the last

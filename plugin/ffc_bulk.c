@@ -393,3 +393,5 @@ void ffc__bulk_info(const ffc__bulk *b, ffc_solve_info *info)
 }
 
 long ffc__bulk_n(const ffc__bulk *b) { return b ? b->n : 0; }
+
+double ffc__bulk_kfree(const ffc__bulk *b) { return b ? b->kfree : 0.0; }

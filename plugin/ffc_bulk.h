@@ -16,6 +16,8 @@ int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const do
                      ffc__bulk **out, long *bad);
 void ffc__bulk_free(ffc__bulk *b);
 long ffc__bulk_n(const ffc__bulk *b);
+/* The mean diagonal of K's rows that are not Dirichlet rows (force/length). */
+double ffc__bulk_kfree(const ffc__bulk *b);
 
 /* (K + Kc) x = rhs (see ffc_scene_solve). */
 int ffc__bulk_solve(ffc__bulk *b, long nt, const long Ti[], const long Tj[], const double Tv[], const double rhs[],

@@ -23,6 +23,12 @@ typedef struct {
     ffc_stats st;      /* last assembly, with the augmentation's own fields
                           (max_dlam, max_dlam_t, max_pen_node) of the last augmentation */
     ffc_stats st_step; /* st at the last commit: the converged step's statistics */
+    /* node-to-surface (o.method == FFC_METHOD_NTS) */
+    long nn;           /* slave nodes */
+    ffc_nts_node *nodes, *nodes0; /* [nn] their table, and at the last commit */
+    int located;       /* 1 once the nodes were located (their states set) */
+    long row0, nr;     /* its rows in the stacked rows of the last ffc_scene_nts_rows */
+    ffc_nts_stats nst, nst_step; /* the last update, and at the last commit */
 } scene_pair;
 
 struct ffc_scene {
@@ -52,6 +58,11 @@ ffc_pair_opts ffc_pair_defaults(void)
     o.eps_n = 0.0;
     o.eps_t = 0.0;
     o.search = ffc_search_defaults();
+    o.mu_d = -1.0;
+    o.gtol = 0.0;
+    o.ftol = 1e-9;
+    o.max_flips = 4;
+    o.scale = 0.0;
     return o;
 }
 
@@ -60,7 +71,10 @@ static int finite_nonneg(double a) { return a >= 0 && isfinite(a); }
 int ffc_pair_opts_check(const ffc_pair_opts *o)
 {
     if (!o) return FFC_ERR_NULL;
-    if (o->method != FFC_METHOD_AL) return FFC_ERR_VALUE;
+    if (o->method != FFC_METHOD_AL && o->method != FFC_METHOD_NTS) return FFC_ERR_VALUE;
+    if (!isfinite(o->mu_d) || o->mu_d > o->mu || !finite_nonneg(o->gtol) || !finite_nonneg(o->ftol) ||
+        o->max_flips < 1 || !finite_nonneg(o->scale))
+        return FFC_ERR_VALUE;
     if (ffc_quad_size(o->qdeg) < 0) return FFC_ERR_QUAD;
     if (o->nodal != 0 && o->nodal != 1) return FFC_ERR_VALUE;
     if (!finite_nonneg(o->mu) || !finite_nonneg(o->eps_t)) return FFC_ERR_VALUE;
@@ -81,6 +95,8 @@ static void pair_free(scene_pair *p)
     free(p->lam_t);
     free(p->lam0);
     free(p->lam_t0);
+    free(p->nodes);
+    free(p->nodes0);
     memset(p, 0, sizeof *p);
 }
 
@@ -206,6 +222,39 @@ static int pair_alloc_links(scene_pair *p)
     return FFC_OK;
 }
 
+/* The slave node table of a node-to-surface pair, every node open and
+ * not located (and its checkpoint); on failure the pair keeps its own. */
+static int nts_alloc(const ffc_scene *s, scene_pair *p)
+{
+    ffc_pair v;
+    memset(&v, 0, sizeof v);
+    v.ns = v.nm = s->nper;
+    v.nfs = p->nfs;
+    v.Fs = p->Fs;
+    v.nfm = p->nfm;
+    v.Fm = p->Fm;
+    v.nv = s->nv;
+    v.X = s->X;
+    v.u = s->u_prev;
+    long need = 0;
+    ffc_nts_nodes(&v, 0, NULL, &need);
+    if (need <= 0) return FFC_ERR_EMPTY;
+    ffc_nts_node *a = calloc(need, sizeof *a), *b = calloc(need, sizeof *b);
+    if (!a || !b) { free(a); free(b); return FFC_ERR_MEMORY; }
+    long n = ffc_nts_nodes(&v, need, a, &need);
+    if (n < 0) { free(a); free(b); return (int)n; }
+    memcpy(b, a, n * sizeof *a);
+    free(p->nodes);
+    free(p->nodes0);
+    p->nodes = a;
+    p->nodes0 = b;
+    p->nn = n;
+    p->located = 0;
+    memset(&p->nst, 0, sizeof p->nst);
+    memset(&p->nst_step, 0, sizeof p->nst_step);
+    return FFC_OK;
+}
+
 int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const long Fm[],
                        const ffc_pair_opts *o, long *bad)
 {
@@ -219,6 +268,8 @@ int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const 
     if ((st = check_nodes(nfs * s->nper, Fs, s->nv, bad))) return st;
     if ((st = check_nodes(nfm * s->nper, Fm, s->nv, bad))) return st;
     if ((st = check_fused(s->nper, nfs, Fs, nfm, Fm, s->nv, bad))) return st;
+    if (o->method == FFC_METHOD_NTS && s->nper != 3) return FFC_ERR_NODES;
+    if (s->np > 0 && s->p[0].o.method != o->method) return FFC_ERR_VALUE; /* one method per scene */
     if (s->np == s->cap) {
         int cap = s->cap ? 2 * s->cap : 4;
         scene_pair *q = realloc(s->p, cap * sizeof *q);
@@ -239,6 +290,10 @@ int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const 
     }
     memcpy(p->Fs, Fs, nfs * s->nper * sizeof *Fs);
     memcpy(p->Fm, Fm, nfm * s->nper * sizeof *Fm);
+    if (o->method == FFC_METHOD_NTS && (st = nts_alloc(s, p))) {
+        pair_free(p);
+        return st;
+    }
     return s->np++;
 }
 
@@ -257,6 +312,7 @@ int ffc_scene_set_pair_opts(ffc_scene *s, int k, const ffc_pair_opts *o)
     int st = ffc_pair_opts_check(o);
     if (st) return st;
     scene_pair *p = &s->p[k];
+    if (o->method != p->o.method) return FFC_ERR_VALUE;
     const int relink = o->qdeg != p->o.qdeg, relam = relink || o->nodal != p->o.nodal;
     const ffc_pair_opts old = p->o;
     p->o = *o;
@@ -306,6 +362,7 @@ int ffc_scene_search(ffc_scene *s, const double u[], long *linked, long *bad)
     long total = 0;
     for (int k = 0; k < s->np; k++) {
         scene_pair *p = &s->p[k];
+        if (p->o.method == FFC_METHOD_NTS) continue; /* its nodes are located by ffc_scene_nts_rows */
         /* the tree keeps its order and refits its boxes as the surfaces move */
         st = p->tree ? ffc_tree_refit(p->tree, s->x) : ffc_tree_build(s->nper, p->nfm, p->Fm, s->nv, s->x, &p->tree);
         if (st) { *bad = k; return st; }
@@ -359,7 +416,7 @@ static pair_call pair_view(const ffc_scene *s, const scene_pair *p, const double
 static int penalties_set(const ffc_scene *s, long *bad)
 {
     for (int k = 0; k < s->np; k++)
-        if (!(s->p[k].o.eps_n > 0)) { *bad = k; return 0; }
+        if (s->p[k].o.method == FFC_METHOD_AL && !(s->p[k].o.eps_n > 0)) { *bad = k; return 0; }
     return 1;
 }
 
@@ -387,6 +444,7 @@ int ffc_scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], 
     int over = 0;
     for (int k = 0; k < s->np; k++) {
         scene_pair *p = &s->p[k];
+        if (p->o.method == FFC_METHOD_NTS) continue; /* constraint rows instead: ffc_scene_nts_rows */
         const pair_call c = pair_view(s, p, u, tangent);
         const long room = over ? 0 : cap - nt;
         long n = 0;
@@ -413,6 +471,7 @@ int ffc_scene_augment(ffc_scene *s, const double u[], long *bad)
     if (!penalties_set(s, bad)) return FFC_ERR_VALUE;
     for (int k = 0; k < s->np; k++) {
         scene_pair *p = &s->p[k];
+        if (p->o.method == FFC_METHOD_NTS) continue;
         const pair_call c = pair_view(s, p, u, FFC_TANGENT_NONE);
         int st = ffc_augment(&c.fx, &c.v, p->o.qdeg, p->nl, p->links, p->lam, p->lam_t, &c.law, &p->st, bad);
         if (st) return st;
@@ -431,6 +490,10 @@ int ffc_scene_commit(ffc_scene *s, const double u[])
         memcpy(p->lam0, p->lam, p->nlam * sizeof *p->lam);
         memcpy(p->lam_t0, p->lam_t, 3 * p->nlam * sizeof *p->lam_t);
         p->st_step = p->st;
+        if (p->nodes) {
+            memcpy(p->nodes0, p->nodes, p->nn * sizeof *p->nodes);
+            p->nst_step = p->nst;
+        }
     }
     return FFC_OK;
 }
@@ -442,6 +505,7 @@ int ffc_scene_restore(ffc_scene *s)
         scene_pair *p = &s->p[k];
         memcpy(p->lam, p->lam0, p->nlam * sizeof *p->lam);
         memcpy(p->lam_t, p->lam_t0, 3 * p->nlam * sizeof *p->lam_t);
+        if (p->nodes) memcpy(p->nodes, p->nodes0, p->nn * sizeof *p->nodes);
     }
     return FFC_OK;
 }
@@ -460,6 +524,10 @@ int ffc_scene_reset(ffc_scene *s)
         memset(&p->st, 0, sizeof p->st);
         memset(&p->st_step, 0, sizeof p->st_step);
         for (long l = 0; l < p->nl; l++) p->links[l].mf = -1;
+        if (p->nodes) {
+            int st = nts_alloc(s, p);
+            if (st) return st;
+        }
     }
     return FFC_OK;
 }
@@ -503,9 +571,31 @@ static const stat_entry stat_table[] = {
 };
 #define FFC__NSTATS ((int)(sizeof stat_table / sizeof stat_table[0]))
 
+/* node-to-surface statistics of the last update (zero for other pairs) */
+typedef struct {
+    const char *name;
+    int sum;
+    double (*get)(const ffc_nts_stats *st);
+} nts_stat_entry;
+#define FFC__STAT(fn, expr) static double fn(const ffc_nts_stats *st) { return (expr); }
+FFC__STAT(nst_changes, (double)st->changes)
+FFC__STAT(nst_chatter, (double)st->chatter)
+FFC__STAT(nst_released, (double)st->released)
+FFC__STAT(nst_locked, (double)st->locked)
+FFC__STAT(nst_gap_err, st->max_gap_err)
+FFC__STAT(nst_slide_res, st->max_slide_res)
+#undef FFC__STAT
+static const nts_stat_entry nts_stat_table[] = {
+    {"changes", 1, nst_changes}, {"chatter", 1, nst_chatter}, {"released", 1, nst_released},
+    {"locked", 1, nst_locked},   {"gapErr", 0, nst_gap_err},  {"slideRes", 0, nst_slide_res},
+};
+#define FFC__NNTS ((int)(sizeof nts_stat_table / sizeof nts_stat_table[0]))
+
 const char *ffc_scene_stat_name(int i)
 {
-    return i >= 0 && i < FFC__NSTATS ? stat_table[i].name : NULL;
+    if (i >= 0 && i < FFC__NSTATS) return stat_table[i].name;
+    if (i >= FFC__NSTATS && i < FFC__NSTATS + FFC__NNTS) return nts_stat_table[i - FFC__NSTATS].name;
+    return NULL;
 }
 
 int ffc_scene_stat(const ffc_scene *s, int pair, const char *name, int step, double *value)
@@ -523,6 +613,17 @@ int ffc_scene_stat(const ffc_scene *s, int pair, const char *name, int step, dou
         *value = r;
         return FFC_OK;
     }
+    for (int i = 0; i < FFC__NNTS; i++) {
+        if (strcmp(name, nts_stat_table[i].name)) continue;
+        double r = 0.0;
+        for (int k = 0; k < s->np; k++) {
+            if ((pair >= 0 && k != pair) || s->p[k].o.method != FFC_METHOD_NTS) continue;
+            const double a = nts_stat_table[i].get(step ? &s->p[k].nst_step : &s->p[k].nst);
+            r = nts_stat_table[i].sum ? r + a : (a > r ? a : r);
+        }
+        *value = r;
+        return FFC_OK;
+    }
     return FFC_ERR_LABEL;
 }
 
@@ -532,7 +633,7 @@ long ffc_scene_nlinks(const ffc_scene *s, int pair)
     if (pair < -1 || pair >= s->np) return FFC_ERR_INDEX;
     long n = 0;
     for (int k = 0; k < s->np; k++)
-        if (pair < 0 || k == pair) n += s->p[k].nl;
+        if (pair < 0 || k == pair) n += s->p[k].o.method == FFC_METHOD_NTS ? s->p[k].nn : s->p[k].nl;
     return n;
 }
 
@@ -550,6 +651,12 @@ int ffc_scene_points(const ffc_scene *s, const double u[], int pair, long cap, d
     for (int k = 0; k < s->np; k++) {
         if (pair >= 0 && k != pair) continue;
         const scene_pair *p = &s->p[k];
+        if (p->o.method == FFC_METHOD_NTS) {
+            int st = ffc_nts_points(s->nv, s->X, u, p->nn, p->nodes, P + row * FFC_POINT_COLS, bad);
+            if (st < 0) return st;
+            row += p->nn;
+            continue;
+        }
         const pair_call c = pair_view(s, p, u, FFC_TANGENT_NONE);
         int st = ffc_points(&c.fx, &c.v, p->o.qdeg, p->nl, p->links, p->lam, p->lam_t, &c.law,
                             P + row * FFC_POINT_COLS, bad);
@@ -676,5 +783,154 @@ int ffc_scene_solve_info(const ffc_scene *s, ffc_solve_info *info)
 {
     if (!s || !info) return FFC_ERR_NULL;
     ffc__bulk_info(s->bulk, info);
+    return FFC_OK;
+}
+
+/* ------------------------------------------------ node-to-surface pairs */
+
+/* The node-to-surface law of pair p (FFC_ERR_VALUE without a row scale). */
+static int nts_law(const ffc_scene *s, const scene_pair *p, ffc_nts_law *law)
+{
+    law->nu_s = p->o.mu;
+    law->nu_d = p->o.mu_d < 0 ? p->o.mu : p->o.mu_d;
+    law->gtol = p->o.gtol > 0 ? p->o.gtol
+                              : 1e-11 * fmin(mean_size(s->nper, p->nfs, p->Fs, s->X), mean_size(s->nper, p->nfm, p->Fm, s->X));
+    law->ftol = p->o.ftol;
+    law->max_flips = p->o.max_flips;
+    law->scale = p->o.scale > 0 ? p->o.scale : ffc__bulk_kfree(s->bulk);
+    return law->scale > 0 ? FFC_OK : FFC_ERR_VALUE;
+}
+
+/* The pair's ffc_stats from its node table: linked (nodes with a
+ * partner), active (in contact), stick, slip, normal and tangential force
+ * on the slave nodes, largest pressure and traction, dissipation |F_t . s|,
+ * largest slip of a node in contact, largest penetration. */
+static void nts_fill_stats(scene_pair *p)
+{
+    ffc_stats *st = &p->st;
+    memset(st, 0, sizeof *st);
+    for (long k = 0; k < p->nn; k++) {
+        const ffc_nts_node *a = &p->nodes[k];
+        if (a->mf >= 0) st->linked++;
+        if (a->state == FFC_NTS_OPEN) continue;
+        st->active++;
+        if (a->state == FFC_NTS_STICK) st->stick++;
+        else st->slip++;
+        double ft[3], tt = 0.0, sl = 0.0, d = 0.0;
+        for (int i = 0; i < 3; i++) {
+            ft[i] = a->f[i] - a->fn * a->nr[i];
+            st->force[i] += a->fn * a->nr[i];
+            st->force_t[i] += ft[i];
+            tt += ft[i] * ft[i];
+            sl += a->slip[i] * a->slip[i];
+            d += ft[i] * a->slip[i];
+        }
+        st->dissipation += fabs(d);
+        if (a->area > 0) {
+            st->max_tn = fmax(st->max_tn, a->fn / a->area);
+            st->max_tt = fmax(st->max_tt, sqrt(tt) / a->area);
+        }
+        st->max_slip = fmax(st->max_slip, sqrt(sl));
+    }
+    st->max_pen = p->nst.max_pen;
+    st->max_pen_node = p->nst.max_pen;
+}
+
+int ffc_scene_nts_step(ffc_scene *s)
+{
+    if (!s) return FFC_ERR_NULL;
+    for (int k = 0; k < s->np; k++) {
+        scene_pair *p = &s->p[k];
+        for (long i = 0; i < p->nn; i++) {
+            ffc_nts_node *a = &p->nodes[i];
+            a->flips = 0;
+            a->chatter = 0;
+            a->mfprev = -1;   /* facets are searched again */
+            a->frozen = 0;
+            /* the step starts from the elastic predictor: no force of this
+             * step yet (a sliding node's first rows hold it, and the update
+             * sends it along the trial force) */
+            memset(a->f, 0, sizeof a->f);
+            a->fn = 0.0;
+        }
+    }
+    return FFC_OK;
+}
+
+int ffc_scene_nts_rows(ffc_scene *s, const double u[], const double fixed[], long cap, long Bi[], long Bj[],
+                       double Bv[], double Fv[], long ccap, double c[], long *ntrip, long *nrows, long *bad)
+{
+    long dummy;
+    if (!bad) bad = &dummy;
+    *bad = -1;
+    if (!s || !u || !ntrip || !nrows) return FFC_ERR_NULL;
+    if (cap < 0 || ccap < 0) return FFC_ERR_SIZE;
+    if ((cap > 0 && (!Bi || !Bj || !Bv || !Fv)) || (ccap > 0 && !c)) return FFC_ERR_NULL;
+    int st = positions(s, u, bad);
+    if (st) return st;
+    const long n = 3 * s->nv;
+    long nt = 0, nr = 0;
+    int over = 0;
+    for (int k = 0; k < s->np; k++) {
+        scene_pair *p = &s->p[k];
+        if (p->o.method != FFC_METHOD_NTS) continue;
+        ffc_nts_law law;
+        if ((st = nts_law(s, p, &law))) { *bad = k; return st; }
+        const pair_call pc = pair_view(s, p, u, FFC_TANGENT_NONE);
+        st = ffc_nts_locate(&pc.v, &law, &p->o.search, !p->located, p->nn, p->nodes);
+        if (st) { *bad = k; return st; }
+        p->located = 1;
+        long t = 0, r = 0;
+        const int room = !over && cap > nt, croom = !over && ccap > nr;
+        st = ffc_nts_rows(&pc.v, &law, fixed, p->nn, p->nodes, room ? cap - nt : 0, room ? Bi + nt : NULL,
+                          room ? Bj + nt : NULL, room ? Bv + nt : NULL, room ? Fv + nt : NULL, croom ? ccap - nr : 0,
+                          croom ? c + nr : NULL, &t, &r);
+        if (st == FFC_ERR_CAPACITY) over = 1;
+        else if (st) { *bad = k; return st; }
+        if (!over) /* this pair's rows follow the others' */
+            for (long i = nt; i < nt + t; i++) {
+                Bi[i] += nr;
+                if (Bj[i] >= n) Bj[i] += nr;
+            }
+        p->row0 = nr;
+        p->nr = r;
+        nt += t;
+        nr += r;
+    }
+    *ntrip = nt;
+    *nrows = nr;
+    return over ? FFC_ERR_CAPACITY : FFC_OK;
+}
+
+int ffc_scene_nts_update(ffc_scene *s, const double u[], long nrows, const double m[], long *changes, long *bad)
+{
+    long dummy;
+    if (!bad) bad = &dummy;
+    *bad = -1;
+    if (!s || !u || !changes || (nrows > 0 && !m)) return FFC_ERR_NULL;
+    int st = positions(s, u, bad);
+    if (st) return st;
+    /* the rows of each pair, which must add up to nrows */
+    long total = 0;
+    for (int k = 0; k < s->np; k++)
+        if (s->p[k].o.method == FFC_METHOD_NTS) total += s->p[k].nr;
+    if (total != nrows) { *bad = total; return FFC_ERR_SIZE; }
+    for (long i = 0; i < nrows; i++)
+        if (!isfinite(m[i])) { *bad = i; return FFC_ERR_NONFINITE; }
+    long ch = 0;
+    for (int k = 0; k < s->np; k++) {
+        scene_pair *p = &s->p[k];
+        if (p->o.method != FFC_METHOD_NTS) continue;
+        ffc_nts_law law;
+        if ((st = nts_law(s, p, &law))) { *bad = k; return st; }
+        const long r = p->nr, off = p->row0;
+        const pair_call pc = pair_view(s, p, u, FFC_TANGENT_NONE);
+        st = ffc_nts_locate(&pc.v, &law, &p->o.search, 0, p->nn, p->nodes);
+        if (!st) st = ffc_nts_update(&law, r, m + off, p->nn, p->nodes, &p->nst);
+        if (st) { *bad = k; return st; }
+        ch += p->nst.changes;
+        nts_fill_stats(p);
+    }
+    *changes = ch;
     return FFC_OK;
 }

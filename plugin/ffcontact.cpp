@@ -1658,7 +1658,7 @@ void need_penalties(const char *fn, SceneData &d)
     for (int k = 0; k < ffc_scene_npairs(d.s); k++) {
         ffc_pair_opts o;
         ffc_scene_pair_opts(d.s, k, &o);
-        if (o.eps_n > 0) continue;
+        if (o.eps_n > 0 || o.method == FFC_METHOD_NTS) continue;
         std::ostringstream s;
         s << "pair " << k << " (" << d.labels[k] << ") has no normal penalty yet: give epsN in ffcAddPair, or set it with "
           << "ffcSetPair(C, " << k << ", epsN = ffcAutoPenalty(C, " << k << ", lame1, lame2)) (solveScene() of scene.idp does that)";
@@ -1732,20 +1732,40 @@ KN<long> side_labels(const char *fn, const char *arg, KN<long> *l)
 }
 
 // The pair options of the named arguments (from o, the current ones).
-enum { PO_METHOD, PO_MU, PO_EPSN, PO_EPST, PO_QDEG, PO_NODAL, PO_CREL, PO_CABS, PO_N };
+enum { PO_METHOD, PO_MU, PO_EPSN, PO_EPST, PO_QDEG, PO_NODAL, PO_CREL, PO_CABS, PO_MUD, PO_GTOL, PO_FTOL, PO_FLIPS,
+       PO_SCALE, PO_N };
 basicAC_F0::name_and_type pair_names[] = {
     {"method", &typeid(string *)}, {"mu", &typeid(double)},   {"epsN", &typeid(double)}, {"epsT", &typeid(double)},
-    {"qdeg", &typeid(long)},       {"nodal", &typeid(long)},  {"crel", &typeid(double)}, {"cabs", &typeid(double)}};
+    {"qdeg", &typeid(long)},       {"nodal", &typeid(long)},  {"crel", &typeid(double)}, {"cabs", &typeid(double)},
+    {"muD", &typeid(double)},      {"gtol", &typeid(double)}, {"ftol", &typeid(double)}, {"maxFlips", &typeid(long)},
+    {"scale", &typeid(double)}};
 
 ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &d, ffc_pair_opts o)
 {
-    const std::string method = nm.str(PO_METHOD, "al");
-    if (method != "al") {
+    const std::string method = nm.str(PO_METHOD, o.method == FFC_METHOD_NTS ? "nts" : "al");
+    if (method != "al" && method != "nts") {
         std::ostringstream s;
-        s << "argument 'method': \"" << method << "\" is not a method of scenes (\"al\": augmented Lagrangian)";
+        s << "argument 'method': \"" << method << "\" is not a method of scenes (\"al\": augmented Lagrangian, \"nts\": node-to-surface)";
         fail(fn, s.str());
     }
-    o.method = FFC_METHOD_AL;
+    const int m = method == "nts" ? FFC_METHOD_NTS : FFC_METHOD_AL;
+    if (m == FFC_METHOD_NTS && d.order != 1)
+        fail(fn, "argument 'method': \"nts\" takes linear facets only: a scene of order 1 ([P1,P1,P1])");
+    if (fn == std::string("ffcSetPair")) {
+        if (m != o.method) fail(fn, "argument 'method': a pair keeps the method it was added with");
+    } else if (ffc_scene_npairs(d.s) > 0) {
+        ffc_pair_opts o0;
+        ffc_scene_pair_opts(d.s, 0, &o0);
+        if (o0.method != m)
+            fail(fn, "argument 'method': \"" + method + "\", but pair 0 uses \"" + (o0.method == FFC_METHOD_NTS ? "nts" : "al") +
+                         "\": the pairs of a scene share one method");
+    }
+    o.method = m;
+    o.mu_d = nm.real(PO_MUD, o.mu_d);
+    o.gtol = nm.real(PO_GTOL, o.gtol);
+    o.ftol = nm.real(PO_FTOL, o.ftol);
+    o.max_flips = (int)nm.integer(PO_FLIPS, o.max_flips);
+    o.scale = nm.real(PO_SCALE, o.scale);
     o.mu = nm.real(PO_MU, o.mu);
     o.eps_n = nm.real(PO_EPSN, o.eps_n);
     o.eps_t = nm.real(PO_EPST, o.eps_t);
@@ -1771,6 +1791,12 @@ ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &
     if (o.nodal != 0 && o.nodal != 1) bad(PO_NODAL, o.nodal, "must be 1 (multipliers at slave nodes) or 0 (at quadrature points)");
     if (!(o.search.capture_rel >= 0) || std::isinf(o.search.capture_rel)) bad(PO_CREL, o.search.capture_rel, "must be finite and >= 0");
     if (!(o.search.capture_abs >= 0) || std::isinf(o.search.capture_abs)) bad(PO_CABS, o.search.capture_abs, "must be finite and >= 0");
+    if (std::isnan(o.mu_d) || std::isinf(o.mu_d) || o.mu_d > o.mu)
+        bad(PO_MUD, o.mu_d, "must be finite and <= mu (dynamic friction coefficient; < 0: mu)");
+    if (!(o.gtol >= 0) || std::isinf(o.gtol)) bad(PO_GTOL, o.gtol, "must be finite and >= 0 (gap tolerance; 0: 1e-11 x the facet size)");
+    if (!(o.ftol >= 0) || std::isinf(o.ftol)) bad(PO_FTOL, o.ftol, "must be finite and >= 0 (tension release tolerance)");
+    if (o.max_flips < 1) bad(PO_FLIPS, o.max_flips, "must be >= 1");
+    if (!(o.scale >= 0) || std::isinf(o.scale)) bad(PO_SCALE, o.scale, "must be finite and >= 0 (row scale; 0: from the bulk matrix)");
     return o;
 }
 
@@ -1875,7 +1901,13 @@ double pairOption(const Named &, FFScene *const &C, long const &k, string *const
     if (n == "nodal") return o.nodal;
     if (n == "crel") return o.search.capture_rel;
     if (n == "cabs") return o.search.capture_abs;
-    fail(fn, "argument 'name': \"" + n + "\" is not an option of a pair (mu, epsN, epsT, qdeg, nodal, crel, cabs)");
+    if (n == "nts") return o.method == FFC_METHOD_NTS;
+    if (n == "muD") return o.mu_d;
+    if (n == "gtol") return o.gtol;
+    if (n == "ftol") return o.ftol;
+    if (n == "maxFlips") return o.max_flips;
+    if (n == "scale") return o.scale;
+    fail(fn, "argument 'name': \"" + n + "\" is not an option of a pair (mu, epsN, epsT, qdeg, nodal, crel, cabs, nts, muD, gtol, ftol, maxFlips, scale)");
 }
 
 long nPairs(const Named &, FFScene *const &C) { return ffc_scene_npairs(need_scene("ffcPairs", C).s); }
@@ -2309,6 +2341,90 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     return 0;
 }
 
+// Node-to-surface pairs. ffcNTSStep(C): a new load step (per-step flips,
+// kept facets and forces cleared). ffcRows(C, u, fixed, B, Bf, Cm, c): the
+// constraint rows of every node-to-surface pair at u (see ffc_nts_rows),
+// without the columns of dofs with fixed != 0 (moved to c); returns the
+// rows. ffcUpdate(C, u, m): after the saddle-point solve, the forces from
+// the multipliers m and the transitions; returns the state changes.
+long sceneNtsStep(const Named &, FFScene *const &C)
+{
+    ffc_scene_nts_step(need_scene("ffcNTSStep", C).s);
+    return 0;
+}
+
+void need_nts_scale(const char *fn, SceneData &d, int st, long bad)
+{
+    if (st == FFC_ERR_VALUE) {
+        std::ostringstream s;
+        s << "pair " << bad << " (" << d.labels[bad] << "): node-to-surface rows need a scale: give scale = ... in ffcAddPair, or the bulk matrix with ffcBulk(C, K)";
+        fail(fn, s.str());
+    }
+}
+
+long sceneRows(const Named &, FFScene *const &C, KN<double> *const &u, KN<double> *const &fixed,
+               Matrice_Creuse<double> *const &B, Matrice_Creuse<double> *const &Bf, Matrice_Creuse<double> *const &Cm,
+               KN<double> *const &cv)
+{
+    const char *fn = "ffcRows";
+    SceneData &d = need_scene(fn, C);
+    const double *pu = need_scene_u(fn, d, u);
+    const double *pf = need_scene_u(fn, d, fixed, "fixed");
+    if (!B) fail(fn, "argument 'B': matrix is not defined");
+    if (!Bf) fail(fn, "argument 'Bf': matrix is not defined");
+    if (!Cm) fail(fn, "argument 'Cm': matrix is not defined");
+    if (!cv) fail(fn, "argument 'c': array is not defined");
+    need_not_inverted(fn, d, pu);
+    long nt = 0, nr = 0, bad = -1;
+    int st = ffc_scene_nts_rows(d.s, pu, pf, 0, nullptr, nullptr, nullptr, nullptr, 0, nullptr, &nt, &nr, &bad);
+    std::vector<long> Bi(nt + 1), Bj(nt + 1);
+    std::vector<double> Bv(nt + 1), Fv(nt + 1), rhs(nr + 1);
+    if (st == FFC_OK || st == FFC_ERR_CAPACITY)
+        st = ffc_scene_nts_rows(d.s, pu, pf, nt, Bi.data(), Bj.data(), Bv.data(), Fv.data(), nr, rhs.data(), &nt, &nr, &bad);
+    need_nts_scale(fn, d, st, bad);
+    if (st) scene_error(fn, st, bad, "the node-to-surface rows");
+    const int n = (int)(3 * d.nn);
+    HashMatrix<int, double> *hb = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
+    HashMatrix<int, double> *hf = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
+    HashMatrix<int, double> *hc = new HashMatrix<int, double>((int)nr, (int)nr, 0, 0);
+    for (long t = 0; t < nt; t++) {
+        if (Bj[t] >= n) {
+            (*hc)((int)Bi[t], (int)(Bj[t] - n)) += Bv[t];
+            continue;
+        }
+        (*hb)((int)Bi[t], (int)Bj[t]) += Bv[t];
+        (*hf)((int)Bi[t], (int)Bj[t]) += Fv[t];
+    }
+    B->A.master(hb);
+    B->typemat = 0;
+    Bf->A.master(hf);
+    Bf->typemat = 0;
+    Cm->A.master(hc);
+    Cm->typemat = 0;
+    cv->resize(nr);
+    for (long r = 0; r < nr; r++) (*cv)[r] = rhs[r];
+    return nr;
+}
+
+long sceneUpdate(const Named &, FFScene *const &C, KN<double> *const &u, KN<double> *const &m)
+{
+    const char *fn = "ffcUpdate";
+    SceneData &d = need_scene(fn, C);
+    const double *pu = need_scene_u(fn, d, u);
+    if (!m) fail(fn, "argument 'm': array is not defined");
+    need_finite(fn, "m", m);
+    long changes = 0, bad = -1;
+    int st = ffc_scene_nts_update(d.s, pu, m->N(), m->N() ? &(*m)[0] : nullptr, &changes, &bad);
+    if (st == FFC_ERR_SIZE) {
+        std::ostringstream s;
+        s << "argument 'm': size " << m->N() << ", expected the " << bad << " multipliers of the rows of the last ffcRows";
+        fail(fn, s.str());
+    }
+    need_nts_scale(fn, d, st, bad);
+    if (st) scene_error(fn, st, bad, "the node-to-surface update");
+    return changes;
+}
+
 template <class R, class... A>
 NamedOp<R, A...> *named(const char *fn, basicAC_F0::name_and_type *names, int n, R (*f)(const Named &, const A &...))
 {
@@ -2347,6 +2463,9 @@ void init_scene()
     Global.Add("ffcBulk", "(", named<long, S, M>("ffcBulk", bulk_names, 1, sceneBulk));
     Global.Add("ffcSolve", "(", named<long, S, M, V, V>("ffcSolve", nullptr, 0, sceneSolve));
     Global.Add("ffcSolverStat", "(", named<double, S, string *>("ffcSolverStat", nullptr, 0, sceneSolverStat));
+    Global.Add("ffcNTSStep", "(", named<long, S>("ffcNTSStep", nullptr, 0, sceneNtsStep));
+    Global.Add("ffcRows", "(", named<long, S, V, V, M, M, M, V>("ffcRows", nullptr, 0, sceneRows));
+    Global.Add("ffcUpdate", "(", named<long, S, V, V>("ffcUpdate", nullptr, 0, sceneUpdate));
 }
 
 } // namespace

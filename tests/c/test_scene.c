@@ -377,6 +377,80 @@ static void test_bad_input(void **state)
     ffc_scene_free(NULL);
 }
 
+
+/* Node-to-surface pairs in a scene: the rows of two pairs stacked (the
+ * second pair's after the first's, each the rows of that pair alone), the
+ * forces of each from its own multipliers, one method per scene, linear
+ * facets only, capacity. Uniform penetration d: each slave node's row
+ * asks its gap to close, c = scale d (frictionless: one row per node). */
+static void test_nts_pairs(void **state)
+{
+    (void)state;
+    double X[3 * NV], u[3 * NV] = {0};
+    long Fs0[6], Fm0[6], Fs1[6], Fm1[6], bad;
+    geometry(X, Fs0, Fm0, Fs1, Fm1);
+    ffc_effects fx = {0, 0, 0};
+    ffc_pair_opts o = ffc_pair_defaults();
+    o.method = FFC_METHOD_NTS;
+    o.scale = 100.0;
+    ffc_scene *s = NULL, *one = NULL;
+    assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_OK);
+    assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &one), FFC_OK);
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), 0);
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fs1, 2, Fm1, &o, &bad), 1);
+    assert_int_equal(ffc_scene_add_pair(one, 2, Fs1, 2, Fm1, &o, &bad), 0);
+    ffc_pair_opts al = opts(0.0);
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fs1, 2, Fm1, &al, &bad), FFC_ERR_VALUE); /* one method per scene */
+    assert_int_equal(ffc_scene_nts_step(s), FFC_OK);
+    assert_int_equal(ffc_scene_nts_step(one), FFC_OK);
+    long nt = 0, nr = 0;
+    assert_int_equal(ffc_scene_nts_rows(s, u, NULL, 0, NULL, NULL, NULL, NULL, 0, NULL, &nt, &nr, &bad), FFC_ERR_CAPACITY);
+    assert_int_equal(nr, 8);
+    long Bi[200], Bj[200], Bi1[200], Bj1[200], nt1 = 0, nr1 = 0;
+    double Bv[200], Fv[200], c[16], Bv1[200], Fv1[200], c1[16];
+    assert_true(nt <= 200);
+    assert_int_equal(ffc_scene_nts_rows(s, u, NULL, 200, Bi, Bj, Bv, Fv, 16, c, &nt, &nr, &bad), FFC_OK);
+    assert_int_equal(ffc_scene_nts_rows(one, u, NULL, 200, Bi1, Bj1, Bv1, Fv1, 16, c1, &nt1, &nr1, &bad), FFC_OK);
+    assert_int_equal(nr1, 4);
+    for (int r = 0; r < 4; r++) {
+        assert_close(c[r], o.scale * D0, 1e-12 * o.scale * D0);
+        assert_close(c[4 + r], c1[r], 1e-15);       /* pair 1's rows: the lone pair's, after pair 0's */
+        assert_close(c1[r], o.scale * D1, 1e-12 * o.scale * D1);
+    }
+    long t1 = 0;
+    for (long t = 0; t < nt; t++) {
+        if (Bi[t] < 4) continue;
+        assert_int_equal(Bi[t] - 4, Bi1[t1]);
+        assert_int_equal(Bj[t], Bj1[t1]);
+        assert_close(Bv[t], Bv1[t1], 1e-15);
+        t1++;
+    }
+    assert_int_equal(t1, nt1);
+    /* multipliers: -1 on pair 0's rows, -2 on pair 1's (F = -m n, n the
+     * master normal +z: compressive); each pair's force is its own */
+    double m[8] = {-1, -1, -1, -1, -2, -2, -2, -2};
+    long changes = -1;
+    assert_int_equal(ffc_scene_nts_update(s, u, 7, m, &changes, &bad), FFC_ERR_SIZE);
+    assert_int_equal(ffc_scene_nts_update(s, u, 8, m, &changes, &bad), FFC_OK);
+    assert_int_equal(changes, 0);
+    assert_close(stat(s, 0, "active"), 4, 0);
+    assert_close(stat(s, 1, "Fz") / stat(s, 0, "Fz"), 2.0, 1e-12);
+    assert_close(fabs(stat(s, 0, "Fz")), 4 * o.scale, 1e-9 * o.scale);
+    assert_close(stat(s, -1, "changes"), 0, 0);
+    /* the points of an NTS pair are its slave nodes */
+    assert_int_equal(ffc_scene_nlinks(s, 1), 4);
+    ffc_scene_free(s);
+    ffc_scene_free(one);
+    /* quadratic facets: refused */
+    ffc_scene *q = NULL;
+    double X6[3 * NV];
+    memcpy(X6, X, sizeof X6);
+    assert_int_equal(ffc_scene_create(6, NV, X6, 0, NULL, &fx, &q), FFC_OK);
+    long F6[12] = {0, 1, 2, 3, 4, 5, 0, 2, 3, 5, 6, 7};
+    assert_int_equal(ffc_scene_add_pair(q, 1, F6, 1, F6 + 6, &o, &bad), FFC_ERR_NODES);
+    ffc_scene_free(q);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -388,6 +462,7 @@ int main(void)
         cmocka_unit_test(test_touching_stick),
         cmocka_unit_test(test_auto_penalty),
         cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_nts_pairs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
