@@ -60,6 +60,22 @@ void ffc__bulk_free(ffc__bulk *b)
     free(b);
 }
 
+/* FFC_ERR_INDEX / FFC_ERR_NONFINITE (*bad = the triplet) for an index
+ * outside [0, n) or a non-finite value among (Ti, Tj, Tv)[nt] */
+static int check_triplets(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long *bad)
+{
+    for (long t = 0; t < nt; t++) {
+        const int st = Ti[t] < 0 || Ti[t] >= n || Tj[t] < 0 || Tj[t] >= n ? FFC_ERR_INDEX
+                       : !isfinite(Tv[t])                                  ? FFC_ERR_NONFINITE
+                                                                           : FFC_OK;
+        if (st) {
+            if (bad) *bad = t;
+            return st;
+        }
+    }
+    return FFC_OK;
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
@@ -73,16 +89,8 @@ int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const do
     *out = NULL;
     if (nt > 0 && (!Ti || !Tj || !Tv)) return FFC_ERR_NULL;
     if (n <= 0 || nt < 0 || mmax < 0 || n > 2147483647L) return FFC_ERR_SIZE;
-    for (long t = 0; t < nt; t++) {
-        if (Ti[t] < 0 || Ti[t] >= n || Tj[t] < 0 || Tj[t] >= n) {
-            if (bad) *bad = t;
-            return FFC_ERR_INDEX;
-        }
-        if (!isfinite(Tv[t])) {
-            if (bad) *bad = t;
-            return FFC_ERR_NONFINITE;
-        }
-    }
+    const int st = check_triplets(n, nt, Ti, Tj, Tv, bad);
+    if (st) return st;
     ffc__bulk *b = calloc(1, sizeof *b);
     if (!b) return FFC_ERR_MEMORY;
     b->n = n;
@@ -322,16 +330,8 @@ int ffc__bulk_solve(ffc__bulk *b, long nt, const long Ti[], const long Tj[], con
     if (!b || !rhs || !x || (nt > 0 && (!Ti || !Tj || !Tv))) return FFC_ERR_NULL;
     if (nt < 0) return FFC_ERR_SIZE;
     const long n = b->n;
-    for (long t = 0; t < nt; t++) {
-        if (Ti[t] < 0 || Ti[t] >= n || Tj[t] < 0 || Tj[t] >= n) {
-            if (bad) *bad = t;
-            return FFC_ERR_INDEX;
-        }
-        if (!isfinite(Tv[t])) {
-            if (bad) *bad = t;
-            return FFC_ERR_NONFINITE;
-        }
-    }
+    int st = check_triplets(n, nt, Ti, Tj, Tv, bad);
+    if (st) return st;
     for (long i = 0; i < n; i++)
         if (!isfinite(rhs[i])) {
             if (bad) *bad = i;
@@ -347,7 +347,7 @@ int ffc__bulk_solve(ffc__bulk *b, long nt, const long Ti[], const long Tj[], con
     for (long t = 0; t < nt; t++) b->kv[t] = b->big[Ti[t]] || b->big[Tj[t]] ? 0.0 : Tv[t];
     /* the contact dofs that Kc touches for the first time */
     long nnew = 0;
-    int st = ffc_reduced_missing(n, b->m, b->dof, nt, Ti, Tj, b->kv, n, b->nd, &nnew, b->pos);
+    st = ffc_reduced_missing(n, b->m, b->dof, nt, Ti, Tj, b->kv, n, b->nd, &nnew, b->pos);
     if (st) return st;
     if (b->m + nnew > b->mmax) {
         if (bad) *bad = b->m + nnew;

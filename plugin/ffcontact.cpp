@@ -1127,6 +1127,35 @@ long ffcNTSNodes(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP, K
     return nn;
 }
 
+// Node-to-surface rows (triplets of ffc_nts_rows / ffc_scene_nts_rows: a
+// column Bj >= n is column Bj - n of the multiplier block) into the FreeFEM
+// matrices B, Bf (nr x n), C (nr x nr) and the right-hand side cv (nr).
+void rows_to_matrices(int n, long nt, long nr, const std::vector<long> &Bi, const std::vector<long> &Bj,
+                      const std::vector<double> &Bv, const std::vector<double> &Fv, const std::vector<double> &rhs,
+                      Matrice_Creuse<double> *B, Matrice_Creuse<double> *Bf, Matrice_Creuse<double> *C,
+                      KN<double> *cv)
+{
+    HashMatrix<int, double> *hb = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
+    HashMatrix<int, double> *hf = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
+    HashMatrix<int, double> *hc = new HashMatrix<int, double>((int)nr, (int)nr, 0, 0);
+    for (long t = 0; t < nt; t++) {
+        if (Bj[t] >= n) {
+            (*hc)((int)Bi[t], (int)(Bj[t] - n)) += Bv[t];
+            continue;
+        }
+        (*hb)((int)Bi[t], (int)Bj[t]) += Bv[t];
+        (*hf)((int)Bi[t], (int)Bj[t]) += Fv[t];
+    }
+    B->A.master(hb);
+    B->typemat = 0;
+    Bf->A.master(hf);
+    Bf->typemat = 0;
+    C->A.master(hc);
+    C->typemat = 0;
+    cv->resize(nr);
+    for (long r = 0; r < nr; r++) (*cv)[r] = rhs[r];
+}
+
 // ffcNTSRows(Th, u, uprev, CP, N, fixed, opt, B, Bf, C, c): the constraint
 // rows of the contact nodes of N at X + u (tangential motion measured from
 // uprev, the last converged step), without the columns of the dofs with
@@ -1159,25 +1188,7 @@ long ffcNTSRows(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, 
                           Fv.data(), nr, rhs.data(), &nt, &nr);
     if (st) fail(fn, std::string("constraint rows: ") + ffc_strerror(st));
     const int n = (int)(3 * c.m.nv);
-    HashMatrix<int, double> *hb = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
-    HashMatrix<int, double> *hf = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
-    HashMatrix<int, double> *hc = new HashMatrix<int, double>((int)nr, (int)nr, 0, 0);
-    for (long t = 0; t < nt; t++) {
-        if (Bj[t] >= n) {
-            (*hc)((int)Bi[t], (int)(Bj[t] - n)) += Bv[t];
-            continue;
-        }
-        (*hb)((int)Bi[t], (int)Bj[t]) += Bv[t];
-        (*hf)((int)Bi[t], (int)Bj[t]) += Fv[t];
-    }
-    B->A.master(hb);
-    B->typemat = 0;
-    Bf->A.master(hf);
-    Bf->typemat = 0;
-    C->A.master(hc);
-    C->typemat = 0;
-    cv->resize(nr);
-    for (long r = 0; r < nr; r++) (*cv)[r] = rhs[r];
+    rows_to_matrices(n, nt, nr, Bi, Bj, Bv, Fv, rhs, B, Bf, C, cv);
     nts_table_out(c, N);
     return nr;
 }
@@ -2384,25 +2395,7 @@ long sceneRows(const Named &, FFScene *const &C, KN<double> *const &u, KN<double
     need_nts_scale(fn, d, st, bad);
     if (st) scene_error(fn, st, bad, "the node-to-surface rows");
     const int n = (int)(3 * d.nn);
-    HashMatrix<int, double> *hb = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
-    HashMatrix<int, double> *hf = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
-    HashMatrix<int, double> *hc = new HashMatrix<int, double>((int)nr, (int)nr, 0, 0);
-    for (long t = 0; t < nt; t++) {
-        if (Bj[t] >= n) {
-            (*hc)((int)Bi[t], (int)(Bj[t] - n)) += Bv[t];
-            continue;
-        }
-        (*hb)((int)Bi[t], (int)Bj[t]) += Bv[t];
-        (*hf)((int)Bi[t], (int)Bj[t]) += Fv[t];
-    }
-    B->A.master(hb);
-    B->typemat = 0;
-    Bf->A.master(hf);
-    Bf->typemat = 0;
-    Cm->A.master(hc);
-    Cm->typemat = 0;
-    cv->resize(nr);
-    for (long r = 0; r < nr; r++) (*cv)[r] = rhs[r];
+    rows_to_matrices(n, nt, nr, Bi, Bj, Bv, Fv, rhs, B, Bf, Cm, cv);
     return nr;
 }
 
