@@ -1,7 +1,7 @@
 #!/bin/sh
 # study.sh: what accuracy costs in time, on the Hertz case. Sweeps one knob
 # at a time from the default (P1, h_c = 0.05, automatic penalty, Uzawa
-# tolerance 1e-4 h_c, quadrature degree 4, CHOLMOD with OpenBLAS), runs
+# tolerance 1e-4 h_c, quadrature degree 4, the factored linear path), runs
 # each setting `reps` times (the median wall time is kept), and writes
 #   results/study.csv              one row per setting, failed runs included
 #   results/study-pareto.png       error against wall time, Pareto front
@@ -9,12 +9,12 @@
 #   results/study-time.png         where the time goes at each mesh level
 # Runs longer than 30 s are timed once (column reps).  Knob "method": the
 # node-to-surface Lagrange-multiplier method (-method nts) at each mesh level.
-# Knob "solver": the linear solver at h_c = 0.025 (auto = CHOLMOD for this
-# symmetric scene; UMFPACK; MUMPS; reduced = the bulk matrix factorized once,
-# contact on the reduced system of its dofs).
+# Knob "solver": UMFPACK on K + Kc at every Newton iteration instead of the
+# default factored path (the stiffness factorized once, each Newton system
+# solved on the contact dofs), at h_c = 0.025, 0.0125 and P2 h_c = 0.05.
 # Friction: the sliding block and Cattaneo-Mindlin with node-to-surface and, for the
-# augmented Lagrangian, with the direct path
-# (auto: UMFPACK, one factorization per Newton system) and the reduced one:
+# augmented Lagrangian, with both linear paths (auto: the factored one;
+# UMFPACK: one factorization per Newton system):
 #   results/study-friction.csv     one row per run (error, iterations, time split)
 #   results/study-friction.png     wall time of both paths and of node-to-surface
 # Usage: sh scripts/study.sh [quick | plots | friction]   (plots: redraw from
@@ -34,7 +34,7 @@ if [ ! -f "$refjson" ] || [ "$mode" != quick ]; then
     sh scripts/ff scripts/hertz.edp $refargs -verbose 0 -vtk 0 -out results/study/reference > /dev/null 2>&1
 fi
 val() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" | head -1; }
-tval() { grep '"time"' "$1" | sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" | head -1; }   # time split
+tval() { val "$1" "time_$2"; }   # time split
 F_ref=$(val "$refjson" F); p0_ref=$(val "$refjson" p0_fit); a_ref=$(val "$refjson" a_fit)
 
 echo "knob,label,order,h_c,eps_factor,pentol,qdeg,converged,dofs,F,a,a_fit,p_max,p0_fit,a_hertz,p0_hertz,err_a,err_a_fit,err_p,err_p0_fit,err_F_ref,err_p0_ref,err_a_ref,max_penetration,newton,uzawa,factorizations,t_total,t_search,t_contact,t_bulk,t_solve,peak_mb,reps,method,solver" > "$csv"
@@ -47,7 +47,7 @@ run() {   # run <knob> <label> <args...>
     for r in $(seq 1 $reps); do
         /usr/bin/time -f "%M" -o "$out.mem" sh scripts/ff scripts/hertz.edp "$@" -verbose 0 -vtk 0 -out "$out" \
             > "$out.log" 2>&1
-        t=$(val "$out.json" total)
+        t=$(val "$out.json" time_total)
         times="$times $t"
         n=$((n + 1))
         awk -v t="$t" 'BEGIN {exit !(t > 30)}' && break
@@ -62,13 +62,13 @@ run() {   # run <knob> <label> <args...>
     q=$(echo "$@" | sed -n 's/.*-q \([^ ]*\).*/\1/p'); q=${q:-4}
     mem=$(tail -1 "$out.mem" 2>/dev/null | awk '{printf "%.1f", $1 / 1024}')
     method=al; case "$*" in *"-method nts"*) method=nts ;; esac
-    solver=$(val "$j" solver | tr -d '"'); solver=${solver:-?}
+    solver=$(val "$j" linear_solver | tr -d '"'); solver=${solver:-?}
     if [ "$conv" = 1 ]; then
         F=$(val $j F); p0f=$(val $j p0_fit); af=$(val $j a_fit)
         eref=$(awk -v a="$F" -v b="$F_ref" 'BEGIN {printf "%.6g", (a - b) / b < 0 ? (b - a) / b : (a - b) / b}')
         epref=$(awk -v a="$p0f" -v b="$p0_ref" 'BEGIN {d = (a - b) / b; printf "%.6g", d < 0 ? -d : d}')
         earef=$(awk -v a="$af" -v b="$a_ref" 'BEGIN {d = (a - b) / b; printf "%.6g", d < 0 ? -d : d}')
-        echo "$knob,$label,$order,$hc,$ef,$pt,$q,1,$(val $j dofs),$F,$(val $j a),$af,$(val $j p_max),$p0f,$(val $j a_hertz),$(val $j p0_hertz),$(val $j err_a),$(val $j err_a_fit),$(val $j err_p),$(val $j err_p0_fit),$eref,$epref,$earef,$(val $j max_penetration),$(val $j newton_iterations),$(val $j uzawa_iterations),$(val $j factorizations),$tmed,$(tval $j search),$(tval $j contact_assembly),$(tval $j bulk_assembly),$(tval $j linear_solves),$mem,$n,$method,$solver" >> "$csv"
+        echo "$knob,$label,$order,$hc,$ef,$pt,$q,1,$(val $j dofs),$F,$(val $j a),$af,$(val $j p_max),$p0f,$(val $j a_hertz),$(val $j p0_hertz),$(val $j err_a),$(val $j err_a_fit),$(val $j err_p),$(val $j err_p0_fit),$eref,$epref,$earef,$(val $j max_penetration),$(val $j newton_iterations),$(val $j uzawa_iterations),$(val $j factorizations),$tmed,$(tval $j search),$(tval $j contact),$(tval $j bulk),$(tval $j solve),$mem,$n,$method,$solver" >> "$csv"
     else
         echo "$knob,$label,$order,$hc,$ef,$pt,$q,0,,,,,,,,,,,,,,,,,$(val $j newton_iterations),$(val $j uzawa_iterations),,$tmed,,,,,$mem,$n,$method,$solver" >> "$csv"
     fi
@@ -94,43 +94,40 @@ else
     run combined p2-hc0.05-q2 -hc 0.05 -q 2 -DQUADRATIC=1
     for h in 0.1 0.05 0.025 0.0125; do run method "nts-hc$h" -hc $h -method nts; done
     run solver solver-UMFPACK -hc 0.025 -solver UMFPACK
-    run solver solver-MUMPS -DMUMPS=1 -hc 0.025 -solver MUMPS
-    run solver solver-reduced -hc 0.025 -solver reduced
-    run solver solver-reduced-hc0.0125 -hc 0.0125 -solver reduced
+    run solver solver-UMFPACK-hc0.0125 -hc 0.0125 -solver UMFPACK
     run solver solver-UMFPACK-p2 -hc 0.05 -DQUADRATIC=1 -solver UMFPACK
-    run solver solver-reduced-p2 -hc 0.05 -DQUADRATIC=1 -solver reduced
 fi
 fi
 
 if [ "$mode" != plots ]; then
 val() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" | head -1; }
-tval() { grep '"time"' "$1" | sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" | head -1; }
+tval() { val "$1" "time_$2"; }
 # friction: both solver paths on the sliding block and Cattaneo-Mindlin, and
 # the sliding block's knobs (increments per ramp, tangential penalty)
 fcsv=results/study-friction.csv
-echo "case,label,h,solver,converged,error_name,error,newton,uzawa,factorizations,reduced_dofs,t_total,t_search,t_contact,t_bulk,t_solve,reps,peak_mb,method,active_set,args" > "$fcsv"
+echo "case,label,h,solver,converged,error_name,error,newton,uzawa,factorizations,contact_dofs,t_total,t_search,t_contact,t_bulk,t_solve,reps,peak_mb,method,active_set,args" > "$fcsv"
 frun() {   # frun <case> <label> <h> <error field (max over the file)> <args...>
     case_=$1; label=$2; h=$3; ef=$4; shift 4
     out=results/study/$label
     times=""; n=0; rc=0
     for r in $(seq 1 $reps); do
         /usr/bin/time -f "%M" -o "$out.mem" sh scripts/ff scripts/$case_.edp "$@" -out "$out" > "$out.log" 2>&1; rc=$?
-        t=$(val "$out.json" total); times="$times $t"; n=$((n + 1))
+        t=$(val "$out.json" time_total); times="$times $t"; n=$((n + 1))
         awk -v t="$t" 'BEGIN {exit !(t > 30)}' && break
     done
     j=$out.json
     tmed=$(echo $times | tr ' ' '\n' | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}')
     err=$(sed -n "s/.*\"$ef\": \([^,}]*\).*/\1/p" "$j" | sort -g | tail -1)
-    solver=$(val "$j" solver | tr -d '"')
+    solver=$(val "$j" linear_solver | tr -d '"')
     last() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" | tail -1; }   # the run's total, after per-level entries
-    echo "$case_,$label,$h,$solver,$([ $rc = 0 ] && echo 1 || echo 0),$ef,$err,$(last $j newton_iterations),$(last $j uzawa_iterations),$(val $j factorizations),$(val $j reduced_dofs),$tmed,$(tval $j search),$(tval $j contact_assembly),$(tval $j bulk_assembly),$(tval $j linear_solves),$n,$(tail -1 "$out.mem" | awk '{printf "%.1f", $1 / 1024}'),$(val $j method | tr -d '"'),$(val $j active_set_iterations),$*" >> "$fcsv"
+    echo "$case_,$label,$h,$solver,$([ $rc = 0 ] && echo 1 || echo 0),$ef,$err,$(last $j newton_iterations),$(last $j uzawa_iterations),$(val $j factorizations),$(val $j contact_dofs),$tmed,$(tval $j search),$(tval $j contact),$(tval $j bulk),$(tval $j solve),$n,$(tail -1 "$out.mem" | awk '{printf "%.1f", $1 / 1024}'),$(val $j method | tr -d '"'),$(val $j active_set_iterations),$*" >> "$fcsv"
     echo "  $label: wall=$tmed s"
 }
 # node-to-surface (exact constraints, UMFPACK on the saddle-point system)
 frun sliding-block "sb-nts" 0.15 err_plateau -method nts
 frun cattaneo-mindlin "cm-hc0.1-nts" 0.1 err_c_over_h -hc 0.1 -method nts
 [ "$mode" = quick ] || frun cattaneo-mindlin "cm-hc0.05-nts" 0.05 err_c_over_h -hc 0.05 -method nts
-for sv in auto reduced; do
+for sv in auto UMFPACK; do
     frun sliding-block "sb-$sv" 0.15 err_plateau -solver $sv
     frun cattaneo-mindlin "cm-hc0.1-$sv" 0.1 err_c_over_h -hc 0.1 -solver $sv
     [ "$mode" = quick ] || frun cattaneo-mindlin "cm-hc0.05-$sv" 0.05 err_c_over_h -hc 0.05 -solver $sv
@@ -189,9 +186,9 @@ plot 'results/study-mesh.dat' using 3:xtic(1) title 'linear solves', '' using 4 
      '' using 5 title 'contact assembly', '' using 6 title 'search', '' using 7 title 'other (script, output)'
 GP
 # friction: wall time of the two solver paths per case
-awk -F, 'NR > 1 && $2 ~ /-(auto|reduced|nts)$/ {k = $2; m = $2; sub(/-(auto|reduced|nts)$/, "", k); sub(/.*-/, "", m);
+awk -F, 'NR > 1 && $2 ~ /-(auto|UMFPACK|nts)$/ {k = $2; m = $2; sub(/-(auto|UMFPACK|nts)$/, "", k); sub(/.*-/, "", m);
     t[k, m] = $12; if (!(k in seen)) {seen[k] = 1; order[++n] = k}}
-    END {for (i = 1; i <= n; i++) {o = order[i]; print o, t[o, "auto"], t[o, "reduced"], ((o, "nts") in t) ? t[o, "nts"] : "NaN"}}' results/study-friction.csv \
+    END {for (i = 1; i <= n; i++) {o = order[i]; print o, t[o, "UMFPACK"], t[o, "auto"], ((o, "nts") in t) ? t[o, "nts"] : "NaN"}}' results/study-friction.csv \
     > results/study-friction.dat
 gnuplot <<'GP'
 set terminal pngcairo size 760,480
@@ -205,7 +202,7 @@ set ylabel 'wall time (s, median)'
 set title 'Friction cases: wall time of the two solver paths and of node-to-surface'
 set key top left
 set yrange [1:*]
-plot 'results/study-friction.dat' using 2:xtic(1) title 'AL direct (UMFPACK)', '' using 3 title 'AL reduced (CHOLMOD once)', \
+plot 'results/study-friction.dat' using 2:xtic(1) title 'AL, UMFPACK per Newton iteration', '' using 3 title 'AL factored (CHOLMOD once)', \
      '' using 4 title 'node-to-surface (UMFPACK, saddle point)'
 GP
 echo "wrote $csv, results/study-pareto.png, results/study-eps.png, results/study-time.png, results/study-friction.csv, results/study-friction.png"
