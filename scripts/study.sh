@@ -125,12 +125,12 @@ frun() {   # frun <case> <label> <h> <error field (max over the file)> <args...>
 }
 # node-to-surface (exact constraints, UMFPACK on the saddle-point system)
 frun sliding-block "sb-nts" 0.15 err_plateau -method nts
-frun cattaneo-mindlin "cm-hc0.1-nts" 0.1 err_c_over_h -hc 0.1 -method nts
-[ "$mode" = quick ] || frun cattaneo-mindlin "cm-hc0.05-nts" 0.05 err_c_over_h -hc 0.05 -method nts
+frun cattaneo-mindlin "cm-hc0.1-nts" 0.1 "level[0-9]_err_c_over_h" -hc 0.1 -method nts
+[ "$mode" = quick ] || frun cattaneo-mindlin "cm-hc0.05-nts" 0.05 "level[0-9]_err_c_over_h" -hc 0.05 -method nts
 for sv in auto UMFPACK; do
     frun sliding-block "sb-$sv" 0.15 err_plateau -solver $sv
-    frun cattaneo-mindlin "cm-hc0.1-$sv" 0.1 err_c_over_h -hc 0.1 -solver $sv
-    [ "$mode" = quick ] || frun cattaneo-mindlin "cm-hc0.05-$sv" 0.05 err_c_over_h -hc 0.05 -solver $sv
+    frun cattaneo-mindlin "cm-hc0.1-$sv" 0.1 "level[0-9]_err_c_over_h" -hc 0.1 -solver $sv
+    [ "$mode" = quick ] || frun cattaneo-mindlin "cm-hc0.05-$sv" 0.05 "level[0-9]_err_c_over_h" -hc 0.05 -solver $sv
 done
 if [ "$mode" != quick ]; then
     for n in 8 32; do frun sliding-block "sb-n$n" 0.15 err_plateau -n $n; done
