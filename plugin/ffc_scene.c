@@ -532,12 +532,14 @@ int ffc_scene_reset(ffc_scene *s)
     return FFC_OK;
 }
 
-/* Statistics by name: how each one reads a pair's ffc_stats, and how the
- * pairs combine (sum or maximum). */
+/* Statistics by name: how each one reads a pair's ffc_stats (get) or, for
+ * node-to-surface pairs only, its ffc_nts_stats (nget; zero for other
+ * pairs), and how the pairs combine (sum or maximum). */
 typedef struct {
     const char *name;
     int sum;           /* 1: summed over pairs, 0: largest */
     double (*get)(const ffc_stats *st);
+    double (*nget)(const ffc_nts_stats *st);
 } stat_entry;
 
 #define FFC__STAT(fn, expr) static double fn(const ffc_stats *st) { return (expr); }
@@ -560,23 +562,6 @@ FFC__STAT(st_ftz, st->force_t[2])
 FFC__STAT(st_dissipation, st->dissipation)
 FFC__STAT(st_max_slip, st->max_slip)
 #undef FFC__STAT
-
-static const stat_entry stat_table[] = {
-    {"linked", 1, st_linked},          {"active", 1, st_active},       {"maxPen", 0, st_max_pen},
-    {"maxPenNode", 0, st_max_pen_node}, {"maxDlam", 0, st_max_dlam},   {"maxTn", 0, st_max_tn},
-    {"Fx", 1, st_fx},                  {"Fy", 1, st_fy},               {"Fz", 1, st_fz},
-    {"stick", 1, st_stick},            {"slip", 1, st_slip},           {"maxDlamT", 0, st_max_dlam_t},
-    {"maxTt", 0, st_max_tt},           {"Ftx", 1, st_ftx},             {"Fty", 1, st_fty},
-    {"Ftz", 1, st_ftz},                {"dissipation", 1, st_dissipation}, {"maxSlip", 0, st_max_slip},
-};
-#define FFC__NSTATS ((int)(sizeof stat_table / sizeof stat_table[0]))
-
-/* node-to-surface statistics of the last update (zero for other pairs) */
-typedef struct {
-    const char *name;
-    int sum;
-    double (*get)(const ffc_nts_stats *st);
-} nts_stat_entry;
 #define FFC__STAT(fn, expr) static double fn(const ffc_nts_stats *st) { return (expr); }
 FFC__STAT(nst_changes, (double)st->changes)
 FFC__STAT(nst_chatter, (double)st->chatter)
@@ -585,17 +570,26 @@ FFC__STAT(nst_locked, (double)st->locked)
 FFC__STAT(nst_gap_err, st->max_gap_err)
 FFC__STAT(nst_slide_res, st->max_slide_res)
 #undef FFC__STAT
-static const nts_stat_entry nts_stat_table[] = {
-    {"changes", 1, nst_changes}, {"chatter", 1, nst_chatter}, {"released", 1, nst_released},
-    {"locked", 1, nst_locked},   {"gapErr", 0, nst_gap_err},  {"slideRes", 0, nst_slide_res},
+
+static const stat_entry stat_table[] = {
+    {"linked", 1, st_linked, NULL},          {"active", 1, st_active, NULL},
+    {"maxPen", 0, st_max_pen, NULL},         {"maxPenNode", 0, st_max_pen_node, NULL},
+    {"maxDlam", 0, st_max_dlam, NULL},       {"maxTn", 0, st_max_tn, NULL},
+    {"Fx", 1, st_fx, NULL},                  {"Fy", 1, st_fy, NULL},
+    {"Fz", 1, st_fz, NULL},                  {"stick", 1, st_stick, NULL},
+    {"slip", 1, st_slip, NULL},              {"maxDlamT", 0, st_max_dlam_t, NULL},
+    {"maxTt", 0, st_max_tt, NULL},           {"Ftx", 1, st_ftx, NULL},
+    {"Fty", 1, st_fty, NULL},                {"Ftz", 1, st_ftz, NULL},
+    {"dissipation", 1, st_dissipation, NULL}, {"maxSlip", 0, st_max_slip, NULL},
+    {"changes", 1, NULL, nst_changes},       {"chatter", 1, NULL, nst_chatter},
+    {"released", 1, NULL, nst_released},     {"locked", 1, NULL, nst_locked},
+    {"gapErr", 0, NULL, nst_gap_err},        {"slideRes", 0, NULL, nst_slide_res},
 };
-#define FFC__NNTS ((int)(sizeof nts_stat_table / sizeof nts_stat_table[0]))
+#define FFC__NSTATS ((int)(sizeof stat_table / sizeof stat_table[0]))
 
 const char *ffc_scene_stat_name(int i)
 {
-    if (i >= 0 && i < FFC__NSTATS) return stat_table[i].name;
-    if (i >= FFC__NSTATS && i < FFC__NSTATS + FFC__NNTS) return nts_stat_table[i - FFC__NSTATS].name;
-    return NULL;
+    return i >= 0 && i < FFC__NSTATS ? stat_table[i].name : NULL;
 }
 
 int ffc_scene_stat(const ffc_scene *s, int pair, const char *name, int step, double *value)
@@ -603,23 +597,14 @@ int ffc_scene_stat(const ffc_scene *s, int pair, const char *name, int step, dou
     if (!s || !name || !value) return FFC_ERR_NULL;
     if (pair < -1 || pair >= s->np) return FFC_ERR_INDEX;
     for (int i = 0; i < FFC__NSTATS; i++) {
-        if (strcmp(name, stat_table[i].name)) continue;
+        const stat_entry *e = &stat_table[i];
+        if (strcmp(name, e->name)) continue;
         double r = 0.0;
         for (int k = 0; k < s->np; k++) {
-            if (pair >= 0 && k != pair) continue;
-            const double a = stat_table[i].get(step ? &s->p[k].st_step : &s->p[k].st);
-            r = stat_table[i].sum ? r + a : (a > r ? a : r);
-        }
-        *value = r;
-        return FFC_OK;
-    }
-    for (int i = 0; i < FFC__NNTS; i++) {
-        if (strcmp(name, nts_stat_table[i].name)) continue;
-        double r = 0.0;
-        for (int k = 0; k < s->np; k++) {
-            if ((pair >= 0 && k != pair) || s->p[k].o.method != FFC_METHOD_NTS) continue;
-            const double a = nts_stat_table[i].get(step ? &s->p[k].nst_step : &s->p[k].nst);
-            r = nts_stat_table[i].sum ? r + a : (a > r ? a : r);
+            const scene_pair *p = &s->p[k];
+            if ((pair >= 0 && k != pair) || (e->nget && p->o.method != FFC_METHOD_NTS)) continue;
+            const double a = e->nget ? e->nget(step ? &p->nst_step : &p->nst) : e->get(step ? &p->st_step : &p->st);
+            r = e->sum ? r + a : (a > r ? a : r);
         }
         *value = r;
         return FFC_OK;
