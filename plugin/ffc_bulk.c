@@ -132,16 +132,24 @@ int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const do
             return FFC_ERR_SINGULAR;
         }
     }
-    /* Dirichlet rows: a diagonal 1e12 times the median or more (FreeFEM's
-     * tgv puts 1e30 there); the shift is the mean diagonal of the others */
+    /* Dirichlet rows: FreeFEM's tgv puts 1e30 on their diagonal. They are
+     * the rows above the first gap of 1e12 or more in the sorted diagonal
+     * (not a multiple of the median: a scene may hold more Dirichlet rows
+     * than free ones); the shift is the mean diagonal of the others */
     memcpy(d, b->diag, nn * sizeof(double));
     qsort(d, nn, sizeof(double), cmp_double);
     const double med = d[nn / 2];
+    double cut = HUGE_VAL;
+    for (size_t i = 0; i + 1 < nn; i++)
+        if (d[i + 1] >= 1e12 * d[i]) {
+            cut = d[i + 1];
+            break;
+        }
     free(d);
     double sum = 0.0;
     long cnt = 0;
     for (long i = 0; i < n; i++) {
-        b->big[i] = b->diag[i] >= 1e12 * med;
+        b->big[i] = b->diag[i] >= cut;
         if (!b->big[i]) { sum += b->diag[i]; cnt++; }
     }
     b->kfree = cnt ? sum / cnt : med;

@@ -25,7 +25,10 @@ static ffc_scene *scene(void)
 }
 
 /* K's triplets (both triangles) and its dense copy */
-static long bulk(long Ti[], long Tj[], double Tv[], double Kd[N * N])
+static long bulk_dir(int ndir, long Ti[], long Tj[], double Tv[], double Kd[N * N]);
+static long bulk(long Ti[], long Tj[], double Tv[], double Kd[N * N]) { return bulk_dir(3, Ti, Tj, Tv, Kd); }
+/* ... with the first ndir dofs on Dirichlet rows */
+static long bulk_dir(int ndir, long Ti[], long Tj[], double Tv[], double Kd[N * N])
 {
     long t = 0;
     memset(Kd, 0, sizeof(double) * N * N);
@@ -38,7 +41,7 @@ static long bulk(long Ti[], long Tj[], double Tv[], double Kd[N * N])
             for (int e = 0; e < 4; e++) { Ti[t] = p[e][0]; Tj[t] = p[e][1]; Tv[t] = v[e]; t++; }
         }
     }
-    for (int i = 0; i < 3; i++) { Ti[t] = i; Tj[t] = i; Tv[t] = TGV; t++; } /* Dirichlet rows */
+    for (int i = 0; i < ndir; i++) { Ti[t] = i; Tj[t] = i; Tv[t] = TGV; t++; } /* Dirichlet rows */
     for (long k = 0; k < t; k++) Kd[Ti[k] * N + Tj[k]] += Tv[k];
     return t;
 }
@@ -116,6 +119,35 @@ static void test_matches_dense(void **state)
     assert_int_equal(in.columns, 6);
     assert_int_equal(in.m, 6);
     assert_true(in.shift > 0);
+    assert_true(in.residual <= 1e-13);
+    ffc_scene_free(s);
+}
+
+/* more Dirichlet rows than free ones (30 of 48: the median diagonal is a
+ * tgv): they are still told apart from the free rows, and the solve matches
+ * the dense one */
+static void test_mostly_dirichlet(void **state)
+{
+    (void)state;
+    ffc_scene *s = scene();
+    long Ti[250], Tj[250], ci[100], cj[100], bad = -1;
+    double Tv[250], cv[100], Kd[N * N], b[N], x[N], xd[N], bd[N];
+    const long nt = bulk_dir(30, Ti, Tj, Tv, Kd);
+    assert_int_equal(ffc_scene_set_bulk(s, N, nt, Ti, Tj, Tv, 1000, &bad), FFC_OK);
+    const int c[] = {35, 36, 37, 40, 41, 42};
+    const long nc = contact(c, 6, 40.0, ci, cj, cv);
+    rhs(b);
+    for (int i = 3; i < 30; i++) b[i] = 0.0; /* imposed values 0 on the further Dirichlet rows */
+    assert_int_equal(ffc_scene_solve(s, nc, ci, cj, cv, b, x, &bad), FFC_OK);
+    for (long k = 0; k < nc; k++) Kd[ci[k] * N + cj[k]] += cv[k];
+    memcpy(bd, b, sizeof bd);
+    dense_solve(Kd, bd, xd);
+    double xmax = 0;
+    for (int i = 0; i < N; i++) xmax = fmax(xmax, fabs(xd[i]));
+    for (int i = 0; i < N; i++) assert_close(x[i], xd[i], 1e-10 * xmax);
+    ffc_solve_info in;
+    assert_int_equal(ffc_scene_solve_info(s, &in), FFC_OK);
+    assert_true(in.rcond > 1e-12);     /* the tgv rows are not in the factorized matrix's conditioning */
     assert_true(in.residual <= 1e-13);
     ffc_scene_free(s);
 }
@@ -210,6 +242,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_matches_dense),
+        cmocka_unit_test(test_mostly_dirichlet),
         cmocka_unit_test(test_columns_grow),
         cmocka_unit_test(test_bad_input),
     };
