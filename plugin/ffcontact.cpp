@@ -41,47 +41,6 @@ struct P2Arrays {
     std::vector<long> vnode;   // [nv] node of each vertex
 };
 
-const long CP_HEAD = 4; // header entries of a contact pair descriptor
-
-// A FreeFEM operator with any number of arguments (FreeFEM's fixed-arity
-// templates stop at eight).
-template <class R, class... A>
-class OneOperatorN : public OneOperator {
-public:
-    typedef R (*func)(const A &...);
-
-private:
-    func f;
-    class Code : public E_F0 {
-    public:
-        func f;
-        Expression a[sizeof...(A)];
-        Code(func ff, const Expression *e) : f(ff)
-        {
-            for (size_t i = 0; i < sizeof...(A); i++) a[i] = e[i];
-        }
-        template <size_t... I>
-        AnyType call(Stack s, std::index_sequence<I...>) const
-        {
-            return SetAny<R>(f(GetAny<A>((*a[I])(s))...));
-        }
-        AnyType operator()(Stack s) const { return call(s, std::index_sequence_for<A...>()); }
-    };
-
-public:
-    explicit OneOperatorN(func ff)
-        : OneOperator(map_type[typeid(R).name()], ArrayOfaType(map_type[typeid(A).name()]..., false)), f(ff)
-    {
-    }
-    E_F0 *code(const basicAC_F0 &args) const
-    {
-        if (args.named_parameter && !args.named_parameter->empty()) CompileError("no named parameters here");
-        Expression e[sizeof...(A)];
-        for (size_t i = 0; i < sizeof...(A); i++) e[i] = t[i]->CastTo(args[i]);
-        return new Code(f, e);
-    }
-};
-
 void mesh_arrays(const Mesh3 &Th, MeshArrays &m)
 {
     m.nv = Th.nv;
@@ -174,12 +133,6 @@ void p2_facets(const char *fn, const MeshArrays &m, const P2Arrays &p2, const Fa
     }
 }
 
-// The contact tangent's triplets (Ti, Tj, Tv)[nt] of an n x n matrix handed
-// to K: duplicates summed in C (the nodal law repeats entries many times);
-// lower = 1 keeps the lower triangle, as FreeFEM's half matrices do.
-void triplets_to_matrix(const char *fn, long n, long nt, const long *Ti, const long *Tj, const double *Tv, bool lower,
-                        Matrice_Creuse<double> *K);
-
 // a real as text, NaN and Inf spelled out
 std::string num(double v)
 {
@@ -261,17 +214,6 @@ void check_facets(const char *fn, const char *arg, int nper, long nf, const long
     fail(fn, s.str());
 }
 
-// An output vector (argument `arg`) of the size of u: n values.
-void need_size(const char *fn, const char *arg, KN<double> *R, long n)
-{
-    if (!R) fail(fn, std::string("argument '") + arg + "': array is not defined");
-    if (R->N() != n) {
-        std::ostringstream s;
-        s << "argument '" << arg << "': size " << R->N() << ", expected " << n << " (the size of u)";
-        fail(fn, s.str());
-    }
-}
-
 // The boundary facets of Th whose label is in labs (argument `arg`),
 // oriented outward, into F; returns their count.
 long select_surface(const char *fn, const char *arg, const Mesh3 &Th, KN<long> *labs, KN<long> *F)
@@ -314,63 +256,6 @@ long ffcSurface(pmesh3 const &pTh, KN<long> *const &labs, KN<long> *const &F)
 }
 
 // Slave and master label lists: non-empty, disjoint.
-void need_pair_labels(const char *fn, KN<long> *sl, KN<long> *ml)
-{
-    if (!sl || sl->N() == 0) fail(fn, "argument 'slaveLabs': empty list of labels");
-    if (!ml || ml->N() == 0) fail(fn, "argument 'masterLabs': empty list of labels");
-    for (long i = 0; i < sl->N(); i++)
-        for (long j = 0; j < ml->N(); j++)
-            if ((*sl)[i] == (*ml)[j]) {
-                std::ostringstream s;
-                s << "label " << (*sl)[i] << " is in both 'slaveLabs' and 'masterLabs'";
-                fail(fn, s.str());
-            }
-}
-
-// ffcPair(Th, slaveLabs, masterLabs, CP): the contact pair descriptor
-// [3, nfs, 3, nfm, slave facets, master facets]; returns nfs.
-long ffcPair(pmesh3 const &pTh, KN<long> *const &sl, KN<long> *const &ml, KN<long> *const &CP)
-{
-    const char *fn = "ffcPair";
-    if (!CP) fail(fn, "argument 'CP': array is not defined");
-    KN<long> Fs(1), Fm(1);
-    const Mesh3 &Th = need_mesh(fn, pTh);
-    need_pair_labels(fn, sl, ml);
-    long nfs = select_surface(fn, "slaveLabs", Th, sl, &Fs);
-    long nfm = select_surface(fn, "masterLabs", Th, ml, &Fm);
-    CP->resize(CP_HEAD + 3 * nfs + 3 * nfm);
-    (*CP)[0] = 3; (*CP)[1] = nfs; (*CP)[2] = 3; (*CP)[3] = nfm;
-    for (long i = 0; i < 3 * nfs; i++) (*CP)[CP_HEAD + i] = Fs[i];
-    for (long i = 0; i < 3 * nfm; i++) (*CP)[CP_HEAD + 3 * nfs + i] = Fm[i];
-    return nfs;
-}
-
-// ffcPair2(Th, slaveLabs, masterLabs, CP): the contact pair of quadratic
-// ([P2,P2,P2]) bodies: [6, nfs, 6, nfm, slave facets, master facets], six
-// P2 nodes per facet (FreeFEM's scalar P2 numbering); returns nfs.
-long ffcPair2(pmesh3 const &pTh, KN<long> *const &sl, KN<long> *const &ml, KN<long> *const &CP)
-{
-    const char *fn = "ffcPair2";
-    if (!CP) fail(fn, "argument 'CP': array is not defined");
-    KN<long> F3s(1), F3m(1);
-    const Mesh3 &Th = need_mesh(fn, pTh);
-    need_pair_labels(fn, sl, ml);
-    long nfs = select_surface(fn, "slaveLabs", Th, sl, &F3s);
-    long nfm = select_surface(fn, "masterLabs", Th, ml, &F3m);
-    MeshArrays m;
-    mesh_arrays(Th, m);
-    P2Arrays p2;
-    p2_arrays(fn, m, p2);
-    const FaceMap face = face_map(m);
-    CP->resize(CP_HEAD + 6 * nfs + 6 * nfm);
-    (*CP)[0] = 6; (*CP)[1] = nfs; (*CP)[2] = 6; (*CP)[3] = nfm;
-    p2_facets(fn, m, p2, face, nfs, &F3s[0], &(*CP)[CP_HEAD]);
-    p2_facets(fn, m, p2, face, nfm, &F3m[0], &(*CP)[CP_HEAD + 6 * nfs]);
-    return nfs;
-}
-
-// ffcP2Nodes(Th, X2): positions of the P2 nodes in FreeFEM's scalar P2
-// numbering (3 per node); returns the number of nodes.
 long ffcP2Nodes(pmesh3 const &pTh, KN<double> *const &X2)
 {
     const char *fn = "ffcP2Nodes";
@@ -425,854 +310,6 @@ long ffcNormals(pmesh3 const &pTh, KN<long> *const &F, KN<double> *const &u,
     return nf;
 }
 
-// A contact pair descriptor CP (int[int]): [ns, nfs, nm, nfm, Fs (ns*nfs), Fm (nm*nfm)]
-// (CP_HEAD entries of header, defined at the top).
-struct PairView {
-    long ns, nfs, nm, nfm;
-    const long *Fs, *Fm;
-};
-
-PairView need_pair(const char *fn, KN<long> *CP, const MeshArrays &m, P2Arrays &p2)
-{
-    if (!CP) fail(fn, "argument 'CP': array is not defined");
-    const long n = CP->N();
-    if (n < CP_HEAD) fail(fn, "argument 'CP': not a contact pair (make it with ffcPair)");
-    PairView p;
-    p.ns = (*CP)[0]; p.nfs = (*CP)[1]; p.nm = (*CP)[2]; p.nfm = (*CP)[3];
-    if ((p.ns != 3 && p.ns != 6) || p.nm != p.ns || p.nfs <= 0 || p.nfm <= 0 ||
-        n != CP_HEAD + p.ns * p.nfs + p.nm * p.nfm) {
-        std::ostringstream s;
-        s << "argument 'CP': header [" << p.ns << ", " << p.nfs << ", " << p.nm << ", " << p.nfm
-          << "] and size " << n << " do not describe a contact pair (make it with ffcPair)";
-        fail(fn, s.str());
-    }
-    p.Fs = &(*CP)[CP_HEAD];
-    p.Fm = p.Fs + p.ns * p.nfs;
-    if (p.ns == 6) p2_arrays(fn, m, p2);
-    const long nv = p.ns == 6 ? p2.nn : m.nv;
-    for (long i = CP_HEAD; i < n; i++)
-        if ((*CP)[i] < 0 || (*CP)[i] >= nv) {
-            std::ostringstream s;
-            s << "argument 'CP': entry " << i << " = " << (*CP)[i] << " is not a " << (p.ns == 6 ? "P2 node" : "vertex")
-              << " of the mesh";
-            fail(fn, s.str());
-        }
-    return p;
-}
-
-// Columns of a link row (real[int,int] L(nlinks, FFC_LINK_COLS)).
-const long L_SF = 0, L_Q = 1, L_XS1 = 2, L_XS2 = 3, L_MF = 4, L_XM1 = 5, L_XM2 = 6, L_GAP = 7,
-           L_NX = 8, L_NY = 9, L_NZ = 10, L_WHERE = 11, L_COLS = 12;
-
-// ffcSearch(Th, u, CP, qdeg, crel, cabs, L): links of every quadrature
-// point of the slave facets to the master facets of the pair CP in the
-// configuration X + u; one row of L per slave point (facet-major);
-// returns the number of points with a partner.
-long ffcSearch(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
-               long const &qdeg, double const &crel, double const &cabs, KNM<double> *const &L)
-{
-    const char *fn = "ffcSearch";
-    const Mesh3 &Th = need_mesh(fn, pTh);
-    if (!L) fail(fn, "argument 'L': array is not defined");
-    if (qdeg < 1 || qdeg > 6) {
-        std::ostringstream s;
-        s << "argument 'qdeg': " << qdeg << " is not a quadrature degree (1..6)";
-        fail(fn, s.str());
-    }
-    if (!(crel >= 0) || std::isinf(crel)) fail(fn, "argument 'crel': capture distance factor " + num(crel) + " must be finite and >= 0");
-    if (!(cabs >= 0) || std::isinf(cabs)) fail(fn, "argument 'cabs': capture distance " + num(cabs) + " must be finite and >= 0");
-    MeshArrays m;
-    mesh_arrays(Th, m);
-    P2Arrays p2;
-    PairView P = need_pair(fn, CP, m, p2);
-    const bool quad = P.ns == 6;
-    const long nn = quad ? p2.nn : m.nv;
-    const double *X = quad ? p2.X2.data() : m.X.data();
-    const double *pu = need_disp(fn, u, nn, quad);
-    const long nfs = P.nfs, nfm = P.nfm;
-    const int nper = (int)P.ns;
-    check_facets(fn, "CP (slave facets)", nper, nfs, P.Fs, nn, X, pu);
-    check_facets(fn, "CP (master facets)", nper, nfm, P.Fm, nn, X, pu);
-    std::vector<double> x(X, X + 3 * nn);
-    for (long i = 0; i < 3 * nn; i++) x[i] += pu[i];
-    ffc_tree *t = nullptr;
-    int st = ffc_tree_build(nper, nfm, P.Fm, nn, x.data(), &t);
-    if (st) fail(fn, std::string("master surface: ") + ffc_strerror(st));
-    const long nq = ffc_quad_size((int)qdeg), nl = nfs * nq;
-    std::vector<ffc_link> links(nl);
-    ffc_search_opts o = ffc_search_defaults();
-    o.capture_rel = crel;
-    o.capture_abs = cabs;
-    st = ffc_search(t, nper, nfs, P.Fs, nn, x.data(), (int)qdeg, &o, nl, links.data());
-    ffc_tree_free(t);
-    if (st < 0) fail(fn, ffc_strerror(st));
-    L->resize(nl, L_COLS);
-    KNM<double> &A = *L;
-    for (long k = 0; k < nl; k++) {
-        const ffc_link &l = links[k];
-        A(k, L_SF) = l.sf; A(k, L_Q) = l.q; A(k, L_XS1) = l.xs[0]; A(k, L_XS2) = l.xs[1];
-        A(k, L_MF) = l.mf; A(k, L_XM1) = l.xm[0]; A(k, L_XM2) = l.xm[1]; A(k, L_GAP) = l.gap;
-        A(k, L_NX) = l.n[0]; A(k, L_NY) = l.n[1]; A(k, L_NZ) = l.n[2]; A(k, L_WHERE) = l.where;
-    }
-    return st;
-}
-
-// quadrature degree whose rule has nq points (degrees 3 and 4 share one)
-int degree_of(long nq)
-{
-    switch (nq) {
-    case 1: return 1;
-    case 3: return 2;
-    case 6: return 4;
-    case 7: return 5;
-    case 12: return 6;
-    default: return -1;
-    }
-}
-
-// Effects bit mask of the script: 1 friction, 2 dynamic, 4 finite deformation.
-// (arg: how the caller names the argument in a message)
-ffc_effects need_effects(const char *fn, long bits, const char *arg = "argument 'opt': effects = opt[1]")
-{
-    if (bits < 0 || bits > 7) {
-        std::ostringstream s;
-        s << arg << " = " << bits << " is not a set of effects (bits: 1 friction, 2 dynamic, 4 finite deformation)";
-        fail(fn, s.str());
-    }
-    ffc_effects e = {(bits & 1) ? 1 : 0, (bits & 2) ? 1 : 0, (bits & 4) ? 1 : 0};
-    return e;
-}
-
-// Everything a link-level call needs, checked.
-struct LinkCall {
-    MeshArrays m;
-    P2Arrays p2;
-    bool quad = false;
-    long nn = 0;                 // nodes (vertices, or P2 nodes)
-    std::vector<double> uv;      // vertex displacements (P2: gathered for the volume check)
-    const double *u = nullptr;
-    long nfs = 0, nfm = 0, nl = 0;
-    int qdeg = 0;
-    std::vector<ffc_link> links;
-    ffc_pair pair;
-    const double *lam_t = nullptr; // [3 nl] tangential multipliers (friction)
-};
-
-// Options opt (real[int]): [eps_N (> 0, force/length^3), effects bits,
-// multipliers (1: at slave nodes, lambda[nv], default; 0: at slave
-// quadrature points, lambda[nlinks]), tangent (0: consistent, default;
-// 1: material part only, positive semi-definite), and with friction
-// (effects bit 1) mu (>= 0) and eps_T (> 0), storage (0 full, 1 lower
-// triangle), and with friction in a dynamic scene (bits 1 and 2) the time
-// step dt (> 0) and the integrator's dv/du (>= 0)].
-struct Options {
-    ffc_effects fx;
-    ffc_law law;
-    bool lower;   // K stored as its lower triangle (symmetric storage, for CHOLMOD)
-};
-
-Options need_options(const char *fn, KN<double> *opt)
-{
-    if (!opt) fail(fn, "argument 'opt': array is not defined");
-    if (opt->N() < 2) {
-        std::ostringstream s;
-        s << "argument 'opt': size " << opt->N() << ", expected [epsN, effects]";
-        fail(fn, s.str());
-    }
-    Options o;
-    o.law.eps_n = (*opt)[0];
-    if (!(o.law.eps_n > 0) || std::isinf(o.law.eps_n))
-        fail(fn, "argument 'opt': penalty epsN = opt[0] = " + num(o.law.eps_n) + " must be finite and > 0");
-    double b = (*opt)[1];
-    if (!(b == std::floor(b))) fail(fn, "argument 'opt': effects = opt[1] = " + num(b) + " is not a set of bits");
-    o.fx = need_effects(fn, (long)b);
-    o.law.nodal = 1;
-    if (opt->N() >= 3) {
-        double m = (*opt)[2];
-        if (m != 0 && m != 1)
-            fail(fn, "argument 'opt': multipliers = opt[2] = " + num(m) + " must be 1 (slave nodes) or 0 (quadrature points)");
-        o.law.nodal = (int)m;
-    }
-    o.law.material_only = 0;
-    if (opt->N() >= 4) {
-        double m = (*opt)[3];
-        if (m != 0 && m != 1)
-            fail(fn, "argument 'opt': tangent = opt[3] = " + num(m) + " must be 0 (consistent) or 1 (material part only)");
-        o.law.material_only = (int)m;
-    }
-    o.lower = false;
-    if (opt->N() >= 7) {
-        double m = (*opt)[6];
-        if (m != 0 && m != 1)
-            fail(fn, "argument 'opt': storage = opt[6] = " + num(m) + " must be 0 (full) or 1 (lower triangle)");
-        if (m == 1 && (o.fx.friction || o.fx.finite_def))
-            fail(fn, "argument 'opt': storage = opt[6] = 1 (lower triangle) needs a symmetric tangent: "
-                     "frictionless and small strain (effects = opt[1] = " + num(b) + ")");
-        o.lower = m == 1;
-    }
-    o.law.mu = 0.0;
-    o.law.eps_t = 0.0;
-    if (o.fx.friction) {
-        if (opt->N() < 6) {
-            std::ostringstream st;
-            st << "argument 'opt': size " << opt->N()
-               << "; friction (effects bit 1) needs [epsN, effects, multipliers, tangent, mu, epsT]";
-            fail(fn, st.str());
-        }
-        o.law.mu = (*opt)[4];
-        o.law.eps_t = (*opt)[5];
-        if (!(o.law.mu >= 0) || std::isinf(o.law.mu))
-            fail(fn, "argument 'opt': friction coefficient mu = opt[4] = " + num(o.law.mu) + " must be finite and >= 0");
-        if (!(o.law.eps_t > 0) || std::isinf(o.law.eps_t))
-            fail(fn, "argument 'opt': tangential penalty epsT = opt[5] = " + num(o.law.eps_t) + " must be finite and > 0");
-    }
-    o.law.dt = 0.0;
-    o.law.dvdu = 0.0;
-    if (o.fx.friction && o.fx.dynamic) {
-        if (opt->N() < 9) {
-            std::ostringstream st;
-            st << "argument 'opt': size " << opt->N()
-               << "; friction in a dynamic scene (effects bits 1 and 2) needs [epsN, effects, multipliers, tangent, mu, "
-                  "epsT, storage, dt, dvdu]";
-            fail(fn, st.str());
-        }
-        o.law.dt = (*opt)[7];
-        o.law.dvdu = (*opt)[8];
-        if (!(o.law.dt > 0) || std::isinf(o.law.dt))
-            fail(fn, "argument 'opt': time step dt = opt[7] = " + num(o.law.dt) +
-                         " must be finite and > 0 (dynamic friction works on velocities)");
-        if (!(o.law.dvdu >= 0) || std::isinf(o.law.dvdu))
-            fail(fn, "argument 'opt': dv/du = opt[8] = " + num(o.law.dvdu) +
-                         " must be finite and >= 0 (the time integrator's derivative of the velocity, e.g. gamma / (beta dt))");
-    }
-    return o;
-}
-
-// Every entry of the array x (argument `name`) finite.
-void need_finite(const char *fn, const char *name, KN<double> *x)
-{
-    for (long k = 0; k < x->N(); k++)
-        if (!std::isfinite((*x)[k])) {
-            std::ostringstream s;
-            s << "argument '" << name << "': " << name << "[" << k << "] = " << num((*x)[k]) << " is not finite";
-            fail(fn, s.str());
-        }
-}
-
-// The displacement of the last converged step (argument 'uprev'), or in
-// a dynamic scene the velocity (argument 'v'): the size of u, finite.
-const double *need_uprev(const char *fn, KN<double> *up, KN<double> *u, const char *name = "uprev")
-{
-    if (!up) fail(fn, std::string("argument '") + name + "': array is not defined");
-    if (up->N() != u->N()) {
-        std::ostringstream s;
-        s << "argument '" << name << "': size " << up->N() << ", expected the size of 'u' (" << u->N() << ")";
-        fail(fn, s.str());
-    }
-    need_finite(fn, name, up);
-    return &(*up)[0];
-}
-
-// up, lamT: nullptr in the frictionless forms of the calls
-void need_links(const char *fn, pmesh3 pTh, KN<double> *u, KN<long> *CP,
-                KNM<double> *L, KN<double> *lam, const Options &o, LinkCall &c,
-                KN<double> *up = nullptr, KN<double> *lamT = nullptr, bool history_form = false)
-{
-    const Mesh3 &Th = need_mesh(fn, pTh);
-    mesh_arrays(Th, c.m);
-    PairView P = need_pair(fn, CP, c.m, c.p2);
-    c.quad = P.ns == 6;
-    c.nn = c.quad ? c.p2.nn : c.m.nv;
-    c.u = need_disp(fn, u, c.nn, c.quad);
-    c.nfs = P.nfs;
-    c.nfm = P.nfm;
-    if (!L) fail(fn, "argument 'L': array is not defined");
-    if (L->M() != L_COLS) {
-        std::ostringstream s;
-        s << "argument 'L': " << L->M() << " columns, expected " << L_COLS << " (links from ffcSearch)";
-        fail(fn, s.str());
-    }
-    c.nl = L->N();
-    if (c.nl % c.nfs || degree_of(c.nl / c.nfs) < 0) {
-        std::ostringstream s;
-        s << "argument 'L': " << c.nl << " rows do not match the " << c.nfs
-          << " slave facets of 'CP' (expected nfs * points per facet, from ffcSearch)";
-        fail(fn, s.str());
-    }
-    c.qdeg = degree_of(c.nl / c.nfs);
-    if (!lam) fail(fn, "argument 'lambda': array is not defined");
-    const long nlam = o.law.nodal ? c.nn : c.nl;
-    if (lam->N() != nlam) {
-        std::ostringstream s;
-        s << "argument 'lambda': size " << lam->N() << ", expected "
-          << (o.law.nodal ? (c.quad ? "one multiplier per P2 node (nodal multipliers): " : "one multiplier per mesh vertex (nodal multipliers): ")
-                          : "one multiplier per link: ") << nlam;
-        fail(fn, s.str());
-    }
-    need_finite(fn, "lambda", lam);
-    const KNM<double> &A = *L;
-    c.links.resize(c.nl);
-    const long nq = c.nl / c.nfs;
-    for (long k = 0; k < c.nl; k++) {
-        ffc_link &l = c.links[k];
-        l.sf = (long)A(k, L_SF); l.q = (int)A(k, L_Q); l.xs[0] = A(k, L_XS1); l.xs[1] = A(k, L_XS2);
-        l.mf = (long)A(k, L_MF); l.xm[0] = A(k, L_XM1); l.xm[1] = A(k, L_XM2); l.gap = A(k, L_GAP);
-        l.n[0] = A(k, L_NX); l.n[1] = A(k, L_NY); l.n[2] = A(k, L_NZ); l.where = (int)A(k, L_WHERE);
-        if (l.sf != k / nq || l.q != k % nq || l.mf < -1 || l.mf >= c.nfm) {
-            std::ostringstream s;
-            s << "argument 'L': row " << k << " (slave facet " << A(k, L_SF) << ", point " << A(k, L_Q)
-              << ", master facet " << A(k, L_MF) << ") is not a link of these surfaces";
-            fail(fn, s.str());
-        }
-    }
-    const double *X = c.quad ? c.p2.X2.data() : c.m.X.data();
-    check_facets(fn, "CP (slave facets)", (int)P.ns, c.nfs, P.Fs, c.nn, X, c.u);
-    check_facets(fn, "CP (master facets)", (int)P.ns, c.nfm, P.Fm, c.nn, X, c.u);
-    const double *uvert = c.u;
-    if (c.quad) {
-        c.uv.resize(3 * c.m.nv);
-        for (long v = 0; v < c.m.nv; v++)
-            for (int i = 0; i < 3; i++) c.uv[3 * v + i] = c.p2.vnode[v] >= 0 ? c.u[3 * c.p2.vnode[v] + i] : 0.0;
-        uvert = c.uv.data();
-    }
-    long bad = -1;
-    if (ffc_volume_check(c.m.nt, c.m.T.data(), c.m.nv, c.m.X.data(), uvert, &bad) == FFC_ERR_INVERTED) {
-        std::ostringstream s;
-        s << "argument 'u': tetrahedron " << bad << " (vertices " << c.m.T[4 * bad] << ", " << c.m.T[4 * bad + 1]
-          << ", " << c.m.T[4 * bad + 2] << ", " << c.m.T[4 * bad + 3]
-          << ") is inverted or collapsed by the displacement: did Newton diverge?";
-        fail(fn, s.str());
-    }
-    c.pair.ns = (int)P.ns; c.pair.nfs = c.nfs; c.pair.Fs = P.Fs;
-    c.pair.nm = (int)P.nm; c.pair.nfm = c.nfm; c.pair.Fm = P.Fm;
-    c.pair.nv = c.nn; c.pair.X = X; c.pair.u = c.u;
-    c.pair.u_prev = nullptr;
-    c.pair.v = nullptr;
-    if (o.fx.friction && !history_form) {
-        std::ostringstream s;
-        s << "friction (effects bit 1) needs the friction history: call " << fn
-          << (o.fx.dynamic ? "(Th, u, v, CP, L, lambda, lambdaT, opt, ...) with the velocity at the end of the step"
-                           : "(Th, u, uprev, CP, L, lambda, lambdaT, opt, ...) with the displacement of the last converged step")
-          << " and the tangential multipliers";
-        fail(fn, s.str());
-    }
-    if (!history_form) return;
-    const double *uprev = need_uprev(fn, up, u, o.fx.dynamic ? "v" : "uprev");
-    if (!lamT) fail(fn, "argument 'lambdaT': array is not defined");
-    const long nlt = 3 * (o.law.nodal ? c.nn : c.nl);
-    if (lamT->N() != nlt) {
-        std::ostringstream s;
-        s << "argument 'lambdaT': size " << lamT->N() << ", expected 3 per "
-          << (o.law.nodal ? (c.quad ? "P2 node" : "mesh vertex") : "link") << ": " << nlt;
-        fail(fn, s.str());
-    }
-    need_finite(fn, "lambdaT", lamT);
-    if (o.fx.dynamic) c.pair.v = uprev;
-    else c.pair.u_prev = uprev;
-    c.lam_t = &(*lamT)[0];
-}
-
-void link_error(const char *fn, int st, long bad)
-{
-    std::ostringstream s;
-    s << ffc_strerror(st);
-    if (bad >= 0) s << " (link " << bad << ")";
-    if (st == FFC_ERR_DEGENERATE) s << ": an inverted or collapsed facet; did Newton diverge?";
-    fail(fn, s.str());
-}
-
-void triplets_to_matrix(const char *fn, long n, long nt, const long *Ti, const long *Tj, const double *Tv, bool lower,
-                        Matrice_Creuse<double> *K)
-{
-    std::vector<long> Ci(nt > 0 ? nt : 1), Cj(nt > 0 ? nt : 1), rp(n + 1), wk(n);
-    std::vector<double> Cv(nt > 0 ? nt : 1);
-    const long nz = ffc_triplets_sum(n, nt, Ti, Tj, Tv, Ci.data(), Cj.data(), Cv.data(), rp.data(), wk.data());
-    if (nz < 0) fail(fn, std::string("the contact tangent: ") + ffc_strerror((int)nz));
-    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, (int)std::min(nz, 1L << 30), lower ? 1 : 0);
-    for (long t = 0; t < nz; t++)
-        if (!lower || Ci[t] >= Cj[t]) (*h)((int)Ci[t], (int)Cj[t]) += Cv[t];
-    K->A.master(h);
-    K->typemat = 0;
-}
-
-// ffcAssemble(Th, u, [uprev,] CP, L, lambda, [lambdaT,] opt, R, K): adds
-// the contact residual into R (size 3 nv) and sets K to the contact
-// tangent (non-symmetric with friction); returns the number of active
-// links.  The forms with uprev (displacement of the last converged step)
-// and lambdaT (3 tangential multipliers per link) are the frictional ones.
-long assemble(const char *fn, pmesh3 pTh, KN<double> *u, KN<double> *up, KN<long> *CP, KNM<double> *L,
-              KN<double> *lam, KN<double> *lamT, KN<double> *opt, KN<double> *R, Matrice_Creuse<double> *K,
-              bool tangent, bool history_form)
-{
-    Options o = need_options(fn, opt);
-    LinkCall c;
-    need_links(fn, pTh, u, CP, L, lam, o, c, up, lamT, history_form);
-    const long n = 3 * c.nn;
-    need_size(fn, "R", R, n);
-    if (tangent && !K) fail(fn, "argument 'K': matrix is not defined");
-    std::vector<double> Rc(n, 0.0);
-    ffc_stats st;
-    long nt = 0, bad = -1;
-    int rc;
-    if (!tangent) {
-        rc = ffc_assemble(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], c.lam_t, &o.law, Rc.data(), 0,
-                          nullptr, nullptr, nullptr, &nt, &st, &bad);
-        if (rc) link_error(fn, rc, bad);
-        for (long i = 0; i < n; i++) (*R)[i] += Rc[i];
-        return st.active;
-    }
-    // triplet buffer: first guess from the links that look active, grown once if needed
-    const long nd = 3 * (c.pair.ns + c.pair.nm), nd2 = nd * nd;
-    long guess = 0;
-    for (long k = 0; k < c.nl; k++)
-        if (c.links[k].mf >= 0 && (c.links[k].gap < 0 || (o.law.nodal ? true : (*lam)[k] > 0))) guess++;
-    long cap = (guess + 16) * nd2 * (o.fx.friction ? 2 : 1);
-    // triplet buffers, not zero-filled (the kernel writes what it counts)
-    std::unique_ptr<long[]> Ti, Tj;
-    std::unique_ptr<double[]> Tv;
-    for (int attempt = 0; attempt < 2; attempt++) {
-        Ti.reset(new long[cap]); Tj.reset(new long[cap]); Tv.reset(new double[cap]);
-        std::fill(Rc.begin(), Rc.end(), 0.0);
-        rc = ffc_assemble(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], c.lam_t, &o.law, Rc.data(),
-                          cap, Ti.get(), Tj.get(), Tv.get(), &nt, &st, &bad);
-        if (rc != FFC_ERR_CAPACITY) break;
-        cap = nt;
-    }
-    if (rc) link_error(fn, rc, bad);
-    for (long i = 0; i < n; i++) (*R)[i] += Rc[i];
-    triplets_to_matrix(fn, n, nt, Ti.get(), Tj.get(), Tv.get(), o.lower, K);
-    return st.active;
-}
-
-long ffcAssemble(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
-                 KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
-                 KN<double> *const &R, Matrice_Creuse<double> *const &K)
-{
-    return assemble("ffcAssemble", pTh, u, nullptr, CP, L, lam, nullptr, opt, R, K, true, false);
-}
-
-long ffcAssembleF(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
-                  KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &lamT,
-                  KN<double> *const &opt, KN<double> *const &R, Matrice_Creuse<double> *const &K)
-{
-    return assemble("ffcAssemble", pTh, u, up, CP, L, lam, lamT, opt, R, K, true, true);
-}
-
-// ffcResidual(Th, u, [uprev,] CP, L, lambda, [lambdaT,] opt, R): adds the
-// contact residual into R (size 3 nv), no tangent; returns the number of
-// active links.
-long ffcResidual(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
-                 KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
-                 KN<double> *const &R)
-{
-    return assemble("ffcResidual", pTh, u, nullptr, CP, L, lam, nullptr, opt, R, nullptr, false, false);
-}
-
-long ffcResidualF(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
-                  KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &lamT,
-                  KN<double> *const &opt, KN<double> *const &R)
-{
-    return assemble("ffcResidual", pTh, u, up, CP, L, lam, lamT, opt, R, nullptr, false, true);
-}
-
-const long S_SIZE = 16;
-
-void stats_out(const ffc_stats &st, KN<double> *S)
-{
-    S->resize(S_SIZE);
-    (*S)[0] = st.linked; (*S)[1] = st.active; (*S)[2] = st.max_pen; (*S)[3] = st.max_dlam;
-    (*S)[4] = st.max_tn; (*S)[5] = st.force[0]; (*S)[6] = st.force[1]; (*S)[7] = st.force[2];
-    (*S)[8] = st.max_pen_node;
-    (*S)[9] = st.stick; (*S)[10] = st.slip; (*S)[11] = st.max_dlam_t;
-    (*S)[12] = st.force_t[0]; (*S)[13] = st.force_t[1]; (*S)[14] = st.force_t[2]; (*S)[15] = st.dissipation;
-}
-
-// ffcAugment(Th, u, [uprev,] CP, L, lambda, [lambdaT,] opt, S): Uzawa
-// update lambda <- <lambda - eps g> (and lambdaT <- T with friction);
-// S = [linked, active, max penetration, max |change of lambda|, max
-// pressure, Fx, Fy, Fz, max weighted nodal penetration, sticking,
-// sliding, max |change of lambdaT|, friction force x, y, z, dissipation];
-// returns active links.
-long augment(const char *fn, pmesh3 pTh, KN<double> *u, KN<double> *up, KN<long> *CP, KNM<double> *L,
-             KN<double> *lam, KN<double> *lamT, KN<double> *opt, KN<double> *S, bool history_form)
-{
-    Options o = need_options(fn, opt);
-    LinkCall c;
-    need_links(fn, pTh, u, CP, L, lam, o, c, up, lamT, history_form);
-    if (!S) fail(fn, "argument 'S': array is not defined");
-    std::vector<double> l(&(*lam)[0], &(*lam)[0] + lam->N());
-    const long nlt = c.lam_t ? lamT->N() : 0;
-    std::vector<double> lt(c.lam_t ? c.lam_t : l.data(), c.lam_t ? c.lam_t + nlt : l.data());
-    ffc_stats st;
-    long bad = -1;
-    int rc = ffc_augment(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), l.data(), c.lam_t ? lt.data() : nullptr,
-                         &o.law, &st, &bad);
-    if (rc) link_error(fn, rc, bad);
-    for (long k = 0; k < lam->N(); k++) (*lam)[k] = l[k];
-    if (c.lam_t)
-        for (long k = 0; k < nlt; k++) (*lamT)[k] = lt[k];
-    stats_out(st, S);
-    return st.active;
-}
-
-long ffcAugment(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
-                KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
-                KN<double> *const &S)
-{
-    return augment("ffcAugment", pTh, u, nullptr, CP, L, lam, nullptr, opt, S, false);
-}
-
-long ffcAugmentF(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
-                 KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &lamT,
-                 KN<double> *const &opt, KN<double> *const &S)
-{
-    return augment("ffcAugment", pTh, u, up, CP, L, lam, lamT, opt, S, true);
-}
-
-// ffcPoints(Th, u, [uprev,] CP, L, lambda, [lambdaT,] opt, P): one row per
-// link: x, y, z, gap, pressure, active, area, master facet, friction
-// traction on the slave (x, y, z), friction state (0 open, 1 stick,
-// 2 slip), dissipation density; returns the active links.
-long points(const char *fn, pmesh3 pTh, KN<double> *u, KN<double> *up, KN<long> *CP, KNM<double> *L,
-            KN<double> *lam, KN<double> *lamT, KN<double> *opt, KNM<double> *P, bool history_form)
-{
-    Options o = need_options(fn, opt);
-    LinkCall c;
-    need_links(fn, pTh, u, CP, L, lam, o, c, up, lamT, history_form);
-    if (!P) fail(fn, "argument 'P': array is not defined");
-    std::vector<double> out(c.nl * FFC_POINT_COLS);
-    long bad = -1;
-    int rc = ffc_points(&o.fx, &c.pair, c.qdeg, c.nl, c.links.data(), &(*lam)[0], c.lam_t, &o.law, out.data(), &bad);
-    if (rc) link_error(fn, rc, bad);
-    P->resize(c.nl, FFC_POINT_COLS);
-    long active = 0;
-    for (long k = 0; k < c.nl; k++) {
-        for (long j = 0; j < FFC_POINT_COLS; j++) (*P)(k, j) = out[k * FFC_POINT_COLS + j];
-        active += out[k * FFC_POINT_COLS + 5] > 0;
-    }
-    return active;
-}
-
-long ffcPoints(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP,
-               KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &opt,
-               KNM<double> *const &P)
-{
-    return points("ffcPoints", pTh, u, nullptr, CP, L, lam, nullptr, opt, P, false);
-}
-
-long ffcPointsF(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
-                KNM<double> *const &L, KN<double> *const &lam, KN<double> *const &lamT,
-                KN<double> *const &opt, KNM<double> *const &P)
-{
-    return points("ffcPoints", pTh, u, up, CP, L, lam, lamT, opt, P, true);
-}
-
-// ---------------------------------------------------------------------------
-// Node-to-surface contact with Lagrange multipliers.
-// Node table N (real[int,int], one row per slave node), columns in the
-// order of ffc_nts_node: node, area, state, flips, chatter, dir (3), master
-// facet, L (3), n (3), gap, slip (3), row, rmask, nr (3), f (3), fn,
-// previous facet, frozen, prescribed tangential dof.
-const long NTS_COLS = 31;
-
-void nts_to_row(const ffc_nts_node &d, KNM<double> &N, long k)
-{
-    const double v[NTS_COLS] = {(double)d.node, d.area, (double)d.state, (double)d.flips, (double)d.chatter,
-                                d.dir[0], d.dir[1], d.dir[2], (double)d.mf, d.L[0], d.L[1], d.L[2],
-                                d.n[0], d.n[1], d.n[2], d.gap, d.slip[0], d.slip[1], d.slip[2],
-                                (double)d.row, (double)d.rmask, d.nr[0], d.nr[1], d.nr[2],
-                                d.f[0], d.f[1], d.f[2], d.fn, (double)d.mfprev, (double)d.frozen,
-                                (double)d.tfix};
-    for (long j = 0; j < NTS_COLS; j++) N(k, j) = v[j];
-}
-
-void nts_from_row(const KNM<double> &N, long k, ffc_nts_node &d)
-{
-    double v[NTS_COLS];
-    for (long j = 0; j < NTS_COLS; j++) v[j] = N(k, j);
-    d.node = (long)v[0]; d.area = v[1]; d.state = (int)v[2]; d.flips = (int)v[3]; d.chatter = (int)v[4];
-    for (int i = 0; i < 3; i++) {
-        d.dir[i] = v[5 + i]; d.L[i] = v[9 + i]; d.n[i] = v[12 + i]; d.slip[i] = v[16 + i];
-        d.nr[i] = v[21 + i]; d.f[i] = v[24 + i];
-    }
-    d.mf = (long)v[8]; d.gap = v[15]; d.row = (long)v[19]; d.rmask = (int)v[20]; d.fn = v[27];
-    d.mfprev = (long)v[28]; d.frozen = (int)v[29]; d.tfix = (int)v[30];
-}
-
-// Options opt (real[int]): [nu_s (static friction, >= 0), nu_d (dynamic,
-// 0 <= nu_d <= nu_s), gtol (length, >= 0), ftol (relative, >= 0),
-// maxFlips (>= 1), scale (force/length, > 0), crel (capture factor, >= 0)].
-struct NtsCall {
-    MeshArrays m;
-    ffc_pair pair;
-    ffc_nts_law law;
-    ffc_search_opts so;
-    std::vector<ffc_nts_node> nodes;
-};
-
-void need_nts(const char *fn, pmesh3 pTh, KN<double> *u, KN<double> *up, KN<long> *CP, KN<double> *opt,
-              NtsCall &c)
-{
-    if (!opt) fail(fn, "argument 'opt': array is not defined");
-    if (opt->N() != 7) {
-        std::ostringstream s;
-        s << "argument 'opt': size " << opt->N() << ", expected [nuS, nuD, gtol, ftol, maxFlips, scale, crel]";
-        fail(fn, s.str());
-    }
-    const KN<double> &o = *opt;
-    const char *names[7] = {"nuS", "nuD", "gtol", "ftol", "maxFlips", "scale", "crel"};
-    for (int k = 0; k < 7; k++)
-        if (!std::isfinite(o[k])) {
-            std::ostringstream s;
-            s << "argument 'opt': " << names[k] << " = opt[" << k << "] = " << num(o[k]) << " is not finite";
-            fail(fn, s.str());
-        }
-    if (o[0] < 0) fail(fn, "argument 'opt': static friction coefficient nuS = opt[0] = " + num(o[0]) + " must be >= 0");
-    if (o[1] < 0) fail(fn, "argument 'opt': dynamic friction coefficient nuD = opt[1] = " + num(o[1]) + " must be >= 0");
-    if (o[1] > o[0])
-        fail(fn, "argument 'opt': dynamic friction coefficient nuD = opt[1] = " + num(o[1]) +
-                     " exceeds the static one nuS = opt[0] = " + num(o[0]));
-    if (o[2] < 0) fail(fn, "argument 'opt': gap tolerance gtol = opt[2] = " + num(o[2]) + " must be >= 0");
-    if (o[3] < 0) fail(fn, "argument 'opt': force tolerance ftol = opt[3] = " + num(o[3]) + " must be >= 0");
-    if (o[4] < 1 || o[4] != std::floor(o[4]))
-        fail(fn, "argument 'opt': maxFlips = opt[4] = " + num(o[4]) + " must be an integer >= 1");
-    if (!(o[5] > 0)) fail(fn, "argument 'opt': row scale = opt[5] = " + num(o[5]) + " must be > 0");
-    if (o[6] < 0) fail(fn, "argument 'opt': capture factor crel = opt[6] = " + num(o[6]) + " must be >= 0");
-    c.law.nu_s = o[0]; c.law.nu_d = o[1]; c.law.gtol = o[2]; c.law.ftol = o[3];
-    c.law.max_flips = (int)o[4]; c.law.scale = o[5];
-    c.so = ffc_search_defaults();
-    c.so.capture_rel = o[6];
-    const Mesh3 &Th = need_mesh(fn, pTh);
-    mesh_arrays(Th, c.m);
-    P2Arrays p2;
-    PairView P = need_pair(fn, CP, c.m, p2);
-    if (P.ns != 3)
-        fail(fn, "argument 'CP': node-to-surface contact needs a pair of linear facets (ffcPair, [P1,P1,P1]); "
-                 "this one has 6-node facets");
-    const double *pu = need_disp(fn, u, c.m.nv);
-    check_facets(fn, "CP (slave facets)", 3, P.nfs, P.Fs, c.m.nv, c.m.X.data(), pu);
-    check_facets(fn, "CP (master facets)", 3, P.nfm, P.Fm, c.m.nv, c.m.X.data(), pu);
-    c.pair.ns = 3; c.pair.nfs = P.nfs; c.pair.Fs = P.Fs;
-    c.pair.nm = 3; c.pair.nfm = P.nfm; c.pair.Fm = P.Fm;
-    c.pair.nv = c.m.nv; c.pair.X = c.m.X.data(); c.pair.u = pu;
-    c.pair.u_prev = nullptr;
-    c.pair.v = nullptr;
-    if (up) c.pair.u_prev = need_uprev(fn, up, u);
-}
-
-// the node table N of the pair (made by ffcNTSNodes), checked
-void need_nts_table(const char *fn, KNM<double> *N, NtsCall &c)
-{
-    if (!N) fail(fn, "argument 'N': array is not defined");
-    long need = 0;
-    long nn = ffc_nts_nodes(&c.pair, 0, nullptr, &need);
-    if (nn < 0 && nn != FFC_ERR_CAPACITY) fail(fn, std::string("argument 'CP': ") + ffc_strerror((int)nn));
-    if (N->M() != NTS_COLS || N->N() != need) {
-        std::ostringstream s;
-        s << "argument 'N': " << N->N() << " x " << N->M() << ", expected the node table of this pair ("
-          << need << " x " << NTS_COLS << ", made by ffcNTSNodes)";
-        fail(fn, s.str());
-    }
-    c.nodes.resize(need);
-    for (long k = 0; k < need; k++) {
-        for (long j = 0; j < NTS_COLS; j++)
-            if (!std::isfinite((*N)(k, j))) {
-                std::ostringstream s;
-                s << "argument 'N': N(" << k << ", " << j << ") = " << num((*N)(k, j)) << " is not finite";
-                fail(fn, s.str());
-            }
-        nts_from_row(*N, k, c.nodes[k]);
-        const ffc_nts_node &d = c.nodes[k];
-        if (d.node < 0 || d.node >= c.m.nv || d.state < 0 || d.state > 2 || d.mf < -1 || d.mf >= c.pair.nfm ||
-            d.mfprev < -1 || d.mfprev >= c.pair.nfm || (d.frozen != 0 && d.frozen != 1) ||
-            d.tfix < 0 || d.tfix > 4) {
-            std::ostringstream s;
-            s << "argument 'N': row " << k << " (node " << (*N)(k, 0L) << ", state " << (*N)(k, 2L)
-              << ", master facet " << (*N)(k, 8L) << ") is not a node of this pair (make N with ffcNTSNodes)";
-            fail(fn, s.str());
-        }
-    }
-}
-
-void nts_locate(const char *fn, NtsCall &c, int init)
-{
-    int st = ffc_nts_locate(&c.pair, &c.law, &c.so, init, (long)c.nodes.size(), c.nodes.data());
-    if (st) fail(fn, std::string("locating the slave nodes: ") + ffc_strerror(st));
-}
-
-void nts_table_out(const NtsCall &c, KNM<double> *N)
-{
-    N->resize(c.nodes.size(), NTS_COLS);
-    for (size_t k = 0; k < c.nodes.size(); k++) nts_to_row(c.nodes[k], *N, (long)k);
-}
-
-// ffcNTSNodes(Th, u, CP, opt, N): the node table of the slave nodes of CP,
-// each paired with the master facet under it at X + u, in contact (stick
-// when nuS > 0, else slide) when its gap is <= gtol; returns the number of
-// slave nodes.
-long ffcNTSNodes(pmesh3 const &pTh, KN<double> *const &u, KN<long> *const &CP, KN<double> *const &opt,
-                 KNM<double> *const &N)
-{
-    const char *fn = "ffcNTSNodes";
-    NtsCall c;
-    need_nts(fn, pTh, u, nullptr, CP, opt, c);
-    if (!N) fail(fn, "argument 'N': array is not defined");
-    long need = 0;
-    ffc_nts_nodes(&c.pair, 0, nullptr, &need);
-    c.nodes.resize(need);
-    long nn = ffc_nts_nodes(&c.pair, need, c.nodes.data(), &need);
-    if (nn < 0) fail(fn, std::string("argument 'CP': slave nodes: ") + ffc_strerror((int)nn));
-    nts_locate(fn, c, 1);
-    nts_table_out(c, N);
-    return nn;
-}
-
-// Node-to-surface rows (triplets of ffc_nts_rows / ffc_scene_nts_rows: a
-// column Bj >= n is column Bj - n of the multiplier block) into the FreeFEM
-// matrices B, Bf (nr x n), C (nr x nr) and the right-hand side cv (nr).
-void rows_to_matrices(int n, long nt, long nr, const std::vector<long> &Bi, const std::vector<long> &Bj,
-                      const std::vector<double> &Bv, const std::vector<double> &Fv, const std::vector<double> &rhs,
-                      Matrice_Creuse<double> *B, Matrice_Creuse<double> *Bf, Matrice_Creuse<double> *C,
-                      KN<double> *cv)
-{
-    HashMatrix<int, double> *hb = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
-    HashMatrix<int, double> *hf = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
-    HashMatrix<int, double> *hc = new HashMatrix<int, double>((int)nr, (int)nr, 0, 0);
-    for (long t = 0; t < nt; t++) {
-        if (Bj[t] >= n) {
-            (*hc)((int)Bi[t], (int)(Bj[t] - n)) += Bv[t];
-            continue;
-        }
-        (*hb)((int)Bi[t], (int)Bj[t]) += Bv[t];
-        (*hf)((int)Bi[t], (int)Bj[t]) += Fv[t];
-    }
-    B->A.master(hb);
-    B->typemat = 0;
-    Bf->A.master(hf);
-    Bf->typemat = 0;
-    C->A.master(hc);
-    C->typemat = 0;
-    cv->resize(nr);
-    for (long r = 0; r < nr; r++) (*cv)[r] = rhs[r];
-}
-
-// ffcNTSRows(Th, u, uprev, CP, N, fixed, opt, B, Bf, C, c): the constraint
-// rows of the contact nodes of N at X + u (tangential motion measured from
-// uprev, the last converged step), without the columns of the dofs with
-// fixed[i] != 0 (moved to c with the values in u): B and Bf (nrows x 3nv),
-// C (nrows x nrows, the multipliers' part of the sliding rows with
-// friction; no entries otherwise) and c (nrows) for the system
-// [K, Bf'; B, C] [u; m] = [f; c]; updates N; returns nrows.
-long ffcNTSRows(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
-                KNM<double> *const &N, KN<double> *const &fixed, KN<double> *const &opt,
-                Matrice_Creuse<double> *const &B, Matrice_Creuse<double> *const &Bf,
-                Matrice_Creuse<double> *const &C, KN<double> *const &cv)
-{
-    const char *fn = "ffcNTSRows";
-    NtsCall c;
-    need_nts(fn, pTh, u, up, CP, opt, c);
-    need_nts_table(fn, N, c);
-    need_size(fn, "fixed", fixed, 3 * c.m.nv);
-    if (!B) fail(fn, "argument 'B': matrix is not defined");
-    if (!Bf) fail(fn, "argument 'Bf': matrix is not defined");
-    if (!C) fail(fn, "argument 'C': matrix is not defined");
-    if (!cv) fail(fn, "argument 'c': array is not defined");
-    nts_locate(fn, c, 0);
-    const long nn = (long)c.nodes.size();
-    long nt = 0, nr = 0;
-    ffc_nts_rows(&c.pair, &c.law, &(*fixed)[0], nn, c.nodes.data(), 0, nullptr, nullptr, nullptr, nullptr, 0,
-                 nullptr, &nt, &nr);
-    std::vector<long> Bi(nt + 1), Bj(nt + 1);
-    std::vector<double> Bv(nt + 1), Fv(nt + 1), rhs(nr + 1);
-    int st = ffc_nts_rows(&c.pair, &c.law, &(*fixed)[0], nn, c.nodes.data(), nt, Bi.data(), Bj.data(), Bv.data(),
-                          Fv.data(), nr, rhs.data(), &nt, &nr);
-    if (st) fail(fn, std::string("constraint rows: ") + ffc_strerror(st));
-    const int n = (int)(3 * c.m.nv);
-    rows_to_matrices(n, nt, nr, Bi, Bj, Bv, Fv, rhs, B, Bf, C, cv);
-    nts_table_out(c, N);
-    return nr;
-}
-
-const long NTS_S_SIZE = 17;
-
-// ffcNTSUpdate(Th, u, uprev, CP, N, m, opt, S): after the solve, the
-// contact forces from the multipliers m of the rows of the last
-// ffcNTSRows, then the open / stick / slide / release transitions at X + u;
-// S = [changes, open, stick, slide, nodes the chattering guard acts on, released, max penetration,
-// min F_n, min open gap, max change of a sliding direction, Fx, Fy, Fz,
-// max |F_t| / F_n, max |gap| of the nodes that stay in contact, Coulomb's
-// law's residual max |F_t + nuD F_n d| / max F_n over sliding nodes,
-// penetrating nodes kept open after 2 maxFlips changes];
-// returns the number of state changes.
-long ffcNTSUpdate(pmesh3 const &pTh, KN<double> *const &u, KN<double> *const &up, KN<long> *const &CP,
-                  KNM<double> *const &N, KN<double> *const &mult, KN<double> *const &opt, KN<double> *const &S)
-{
-    const char *fn = "ffcNTSUpdate";
-    NtsCall c;
-    need_nts(fn, pTh, u, up, CP, opt, c);
-    need_nts_table(fn, N, c);
-    if (!mult) fail(fn, "argument 'm': array is not defined");
-    if (!S) fail(fn, "argument 'S': array is not defined");
-    const long nr = ffc_nts_nrows((long)c.nodes.size(), c.nodes.data());
-    if (mult->N() != nr) {
-        std::ostringstream s;
-        s << "argument 'm': size " << mult->N() << ", expected the " << nr << " multipliers of the rows of the last ffcNTSRows";
-        fail(fn, s.str());
-    }
-    for (long k = 0; k < nr; k++)
-        if (!std::isfinite((*mult)[k])) {
-            std::ostringstream s;
-            s << "argument 'm': m[" << k << "] = " << num((*mult)[k]) << " is not finite (did the saddle-point solve fail?)";
-            fail(fn, s.str());
-        }
-    nts_locate(fn, c, 0);
-    ffc_nts_stats st;
-    int rc = ffc_nts_update(&c.law, nr, nr ? &(*mult)[0] : nullptr, (long)c.nodes.size(), c.nodes.data(), &st);
-    if (rc) fail(fn, ffc_strerror(rc));
-    nts_table_out(c, N);
-    S->resize(NTS_S_SIZE);
-    const double v[NTS_S_SIZE] = {(double)st.changes, (double)st.open, (double)st.stick, (double)st.slide,
-                                  (double)st.chatter, (double)st.released, st.max_pen, st.min_fn, st.min_gap_open,
-                                  st.max_ddir, st.force[0], st.force[1], st.force[2], st.max_ratio,
-                                  st.max_gap_err, st.max_slide_res, (double)st.locked};
-    for (long k = 0; k < NTS_S_SIZE; k++) (*S)[k] = v[k];
-    return st.changes;
-}
-
-// ffcNTSPoints(Th, u, N, P): one row per slave node in the columns of
-// ffcPoints: x, y, z (current), gap, pressure F_n / area, in contact,
-// area, master facet, tangential traction on the slave (x, y, z), state
-// (0 open, 1 stick, 2 slide), dissipation density |F_t . slip| / area;
-// returns the nodes in contact.
-long ffcNTSPoints(pmesh3 const &pTh, KN<double> *const &u, KNM<double> *const &N, KNM<double> *const &P)
-{
-    const char *fn = "ffcNTSPoints";
-    const Mesh3 &Th = need_mesh(fn, pTh);
-    MeshArrays m;
-    mesh_arrays(Th, m);
-    const double *pu = need_disp(fn, u, m.nv);
-    if (!N || N->M() != NTS_COLS) fail(fn, "argument 'N': expected the node table of ffcNTSNodes");
-    if (!P) fail(fn, "argument 'P': array is not defined");
-    const long nn = N->N();
-    std::vector<ffc_nts_node> nodes(nn);
-    for (long k = 0; k < nn; k++) nts_from_row(*N, k, nodes[k]);
-    std::vector<double> out(nn * FFC_POINT_COLS);
-    long bad = -1;
-    int active = ffc_nts_points(m.nv, m.X.data(), pu, nn, nodes.data(), out.data(), &bad);
-    if (active < 0) {
-        std::ostringstream s;
-        s << "argument 'N': row " << bad << " (node " << (*N)(bad, 0L) << ", area " << num((*N)(bad, 1L))
-          << ") is not a slave node of this mesh";
-        fail(fn, s.str());
-    }
-    P->resize(nn, FFC_POINT_COLS);
-    for (long k = 0; k < nn; k++)
-        for (long j = 0; j < FFC_POINT_COLS; j++) (*P)(k, j) = out[k * FFC_POINT_COLS + j];
-    return active;
-}
-
-// ffcSaveVTK(file, P): the contact points of ffcPoints as a VTK point cloud
-// with gap, pressure and active fields; returns the number of points.
 long ffcSaveVTK(string *const &file, KNM<double> *const &P)
 {
     const char *fn = "ffcSaveVTK";
@@ -1373,124 +410,88 @@ long matrix_triplets(const char *fn, const char *arg, Matrice_Creuse<double> *K,
 }
 
 // The leading dimension of G (argument 'G': ld x ld entries).
-long reduced_ld(const char *fn, KN<double> *G, long m)
+// The contact tangent's triplets (Ti, Tj, Tv)[nt] of an n x n matrix handed
+// to K: duplicates summed in C (the nodal law repeats entries many times);
+// lower = 1 keeps the lower triangle, as FreeFEM's half matrices do.
+void triplets_to_matrix(const char *fn, long n, long nt, const long *Ti, const long *Tj, const double *Tv, bool lower,
+                        Matrice_Creuse<double> *K)
 {
-    if (!G) fail(fn, "argument 'G': array is not defined");
-    const long ld = (long)std::llround(std::sqrt((double)G->N()));
-    if (ld * ld != G->N() || ld < m) {
-        std::ostringstream s;
-        s << "argument 'G': size " << G->N() << " is not ld x ld with ld >= " << m << " (the contact dofs in 'rdof')";
-        fail(fn, s.str());
-    }
-    return ld;
+    std::vector<long> Ci(nt > 0 ? nt : 1), Cj(nt > 0 ? nt : 1), rp(n + 1), wk(n);
+    std::vector<double> Cv(nt > 0 ? nt : 1);
+    const long nz = ffc_triplets_sum(n, nt, Ti, Tj, Tv, Ci.data(), Cj.data(), Cv.data(), rp.data(), wk.data());
+    if (nz < 0) fail(fn, std::string("the contact tangent: ") + ffc_strerror((int)nz));
+    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, (int)std::min(nz, 1L << 30), lower ? 1 : 0);
+    for (long t = 0; t < nz; t++)
+        if (!lower || Ci[t] >= Cj[t]) (*h)((int)Ci[t], (int)Cj[t]) += Cv[t];
+    K->A.master(h);
+    K->typemat = 0;
 }
 
-void reduced_error(const char *fn, int st, const char *what)
+
+// The helpers of the scene calls: labels, effects bits, finite arrays, the
+// constraint rows of node-to-surface pairs as FreeFEM matrices.
+void need_pair_labels(const char *fn, KN<long> *sl, KN<long> *ml)
 {
-    std::ostringstream s;
-    s << ffc_strerror(st) << " (" << what << ")";
-    fail(fn, s.str());
+    if (!sl || sl->N() == 0) fail(fn, "argument 'slaveLabs': empty list of labels");
+    if (!ml || ml->N() == 0) fail(fn, "argument 'masterLabs': empty list of labels");
+    for (long i = 0; i < sl->N(); i++)
+        for (long j = 0; j < ml->N(); j++)
+            if ((*sl)[i] == (*ml)[j]) {
+                std::ostringstream s;
+                s << "label " << (*sl)[i] << " is in both 'slaveLabs' and 'masterLabs'";
+                fail(fn, s.str());
+            }
 }
 
-// ffcReducedMissing(Kc, rdof, out): the dofs the matrix Kc touches that
-// are not in rdof, into out (resized); returns their count.
-long ffcReducedMissing(Matrice_Creuse<double> *const &Kc, KN<long> *const &rdof, KN<long> *const &out)
+ffc_effects need_effects(const char *fn, long bits, const char *arg = "argument 'opt': effects = opt[1]")
 {
-    const char *fn = "ffcReducedMissing";
-    std::vector<long> Ti, Tj;
-    std::vector<double> Tv;
-    const long n = matrix_triplets(fn, "Kc", Kc, Ti, Tj, Tv);
-    if (!rdof) fail(fn, "argument 'rdof': array is not defined");
-    if (!out) fail(fn, "argument 'out': array is not defined");
-    const long m = rdof->N();
-    std::vector<long> d(m > 0 ? m : 1), o(n), pos(n);
-    for (long k = 0; k < m; k++) d[k] = (*rdof)[k];
-    long nout = 0;
-    int st = ffc_reduced_missing(n, m, d.data(), (long)Ti.size(), Ti.data(), Tj.data(), Tv.data(), n, o.data(), &nout,
-                                 pos.data());
-    if (st) reduced_error(fn, st, "argument 'rdof': a dof outside the matrix");
-    out->resize(nout);
-    for (long k = 0; k < nout; k++) (*out)[k] = o[k];
-    return nout;
+    if (bits < 0 || bits > 7) {
+        std::ostringstream s;
+        s << arg << " = " << bits << " is not a set of effects (bits: 1 friction, 2 dynamic, 4 finite deformation)";
+        fail(fn, s.str());
+    }
+    ffc_effects e = {(bits & 1) ? 1 : 0, (bits & 2) ? 1 : 0, (bits & 4) ? 1 : 0};
+    return e;
 }
 
-// ffcReducedAdd(G, rdof, x, j): appends dof j and the column x = K^-1 e_j
-// (size n) to rdof and G (G grows, keeping its contents); returns the
-// number of contact dofs.
-long ffcReducedAdd(KN<double> *const &G, KN<long> *const &rdof, KN<double> *const &x, long const &j)
+// every entry of the array x (argument `name`) finite
+void need_finite(const char *fn, const char *name, KN<double> *x)
 {
-    const char *fn = "ffcReducedAdd";
-    if (!rdof) fail(fn, "argument 'rdof': array is not defined");
-    if (!x) fail(fn, "argument 'x': array is not defined");
-    const long m = rdof->N(), n = x->N();
-    long ld = reduced_ld(fn, G, m);
-    if (j < 0 || j >= n) {
-        std::ostringstream s;
-        s << "argument 'j': dof " << j << " outside the " << n << " entries of 'x'";
-        fail(fn, s.str());
-    }
-    if (m >= ld) {   // grow: double the leading dimension, keep G
-        const long ld2 = std::max(2 * ld, 64L);
-        std::vector<double> g(ld2 * ld2, 0.0);
-        for (long c = 0; c < m; c++)
-            for (long r = 0; r < m; r++) g[r + c * ld2] = (*G)[r + c * ld];
-        G->resize(ld2 * ld2);
-        for (long k = 0; k < ld2 * ld2; k++) (*G)[k] = g[k];
-        ld = ld2;
-    }
-    std::vector<long> d(m + 1);
-    for (long k = 0; k < m; k++) d[k] = (*rdof)[k];
-    int st = ffc_reduced_add(n, ld, m, d.data(), &(*G)[0], &(*x)[0], j);
-    if (st) {
-        std::ostringstream s;
-        s << "argument 'j' = " << j << " or 'rdof'/'x'";
-        reduced_error(fn, st, s.str().c_str());
-    }
-    rdof->resize(m + 1);
-    (*rdof)[m] = j;
-    return m + 1;
+    for (long k = 0; k < x->N(); k++)
+        if (!std::isfinite((*x)[k])) {
+            std::ostringstream s;
+            s << "argument '" << name << "': " << name << "[" << k << "] = " << num((*x)[k]) << " is not finite";
+            fail(fn, s.str());
+        }
 }
 
-// ffcReducedSolve(G, rdof, Kc, sh, y, w): with y = Ks^-1 b, Ks = K +
-// diag(sh) (sh: size n, non-zero only on contact dofs; or size 0 for no
-// shift), solves (I + G Kcc') x_C = y_C, Kcc' = Kcc - diag(sh), and sets
-// w = P Kcc' x_C (size n); the solution of (K + Kc) x = b is then
-// y - Ks^-1 w.  Returns the number of contact dofs.
-long ffcReducedSolve(KN<double> *const &G, KN<long> *const &rdof, Matrice_Creuse<double> *const &Kc,
-                     KN<double> *const &sh, KN<double> *const &y, KN<double> *const &w)
+// the constraint rows (Bi, Bj, Bv)[nt] of nr rows as FreeFEM matrices: B,
+// the force directions Bf (Fv), C (the columns >= n: the multipliers' part
+// of sliding rows) and the right-hand side c
+void rows_to_matrices(int n, long nt, long nr, const std::vector<long> &Bi, const std::vector<long> &Bj,
+                      const std::vector<double> &Bv, const std::vector<double> &Fv, const std::vector<double> &rhs,
+                      Matrice_Creuse<double> *B, Matrice_Creuse<double> *Bf, Matrice_Creuse<double> *C,
+                      KN<double> *cv)
 {
-    const char *fn = "ffcReducedSolve";
-    std::vector<long> Ti, Tj;
-    std::vector<double> Tv;
-    const long n = matrix_triplets(fn, "Kc", Kc, Ti, Tj, Tv);
-    if (!rdof) fail(fn, "argument 'rdof': array is not defined");
-    const long m = rdof->N(), ld = reduced_ld(fn, G, m);
-    if (!y) fail(fn, "argument 'y': array is not defined");
-    if (y->N() != n) {
-        std::ostringstream s;
-        s << "argument 'y': size " << y->N() << ", expected " << n << " (the size of 'Kc')";
-        fail(fn, s.str());
+    HashMatrix<int, double> *hb = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
+    HashMatrix<int, double> *hf = new HashMatrix<int, double>((int)nr, n, (int)nt, 0);
+    HashMatrix<int, double> *hc = new HashMatrix<int, double>((int)nr, (int)nr, 0, 0);
+    for (long t = 0; t < nt; t++) {
+        if (Bj[t] >= n) {
+            (*hc)((int)Bi[t], (int)(Bj[t] - n)) += Bv[t];
+            continue;
+        }
+        (*hb)((int)Bi[t], (int)Bj[t]) += Bv[t];
+        (*hf)((int)Bi[t], (int)Bj[t]) += Fv[t];
     }
-    if (!w) fail(fn, "argument 'w': array is not defined");
-    need_finite(fn, "y", y);
-    if (!sh) fail(fn, "argument 'sh': array is not defined");
-    if (sh->N() != 0 && sh->N() != n) {
-        std::ostringstream s;
-        s << "argument 'sh': size " << sh->N() << ", expected " << n << " (the size of 'Kc') or 0 (no shift)";
-        fail(fn, s.str());
-    }
-    std::vector<long> d(m > 0 ? m : 1), piv(m > 0 ? m : 1), pos(n);
-    for (long k = 0; k < m; k++) d[k] = (*rdof)[k];
-    std::vector<double> xc(m > 0 ? m : 1), A(m > 0 ? m * m : 1), wv(n);
-    int st = ffc_reduced_solve(n, ld, m, d.data(), m > 0 ? &(*G)[0] : nullptr, (long)Ti.size(), Ti.data(), Tj.data(),
-                               Tv.data(), sh->N() ? &(*sh)[0] : nullptr, &(*y)[0], xc.data(), wv.data(), A.data(),
-                               piv.data(), pos.data());
-    if (st == FFC_ERR_INDEX)
-        reduced_error(fn, st, "argument 'Kc' or 'sh' touches a dof not in 'rdof': call ffcReducedMissing and ffcReducedAdd first");
-    if (st) reduced_error(fn, st, "the reduced contact system");
-    w->resize(n);
-    for (long k = 0; k < n; k++) (*w)[k] = wv[k];
-    return m;
+    B->A.master(hb);
+    B->typemat = 0;
+    Bf->A.master(hf);
+    Bf->typemat = 0;
+    C->A.master(hc);
+    C->typemat = 0;
+    cv->resize(nr);
+    for (long r = 0; r < nr; r++) (*cv)[r] = rhs[r];
 }
 
 // ---------------------------------------------------------------------------
@@ -2472,45 +1473,7 @@ static void init()
                new OneOperator3_<double, pmesh3, KN<long> *, KN<double> *>(ffcArea));
     Global.Add("ffcTime", "(", new OneOperator0<double>(ffcTime));
     Global.Add("ffcInverted", "(", new OneOperator2_<long, pmesh3, KN<double> *>(ffcInverted));
-    Global.Add("ffcPair2", "(",
-               new OneOperator4_<long, pmesh3, KN<long> *, KN<long> *, KN<long> *>(ffcPair2));
     Global.Add("ffcP2Nodes", "(", new OneOperator2_<long, pmesh3, KN<double> *>(ffcP2Nodes));
-    Global.Add("ffcPair", "(",
-               new OneOperator4_<long, pmesh3, KN<long> *, KN<long> *, KN<long> *>(ffcPair));
-    Global.Add("ffcSearch", "(",
-               new OneOperator7_<long, pmesh3, KN<double> *, KN<long> *, long, double, double,
-                                 KNM<double> *>(ffcSearch));
-    Global.Add("ffcAssemble", "(",
-               new OneOperator8_<long, pmesh3, KN<double> *, KN<long> *, KNM<double> *, KN<double> *,
-                                 KN<double> *, KN<double> *, Matrice_Creuse<double> *>(ffcAssemble));
-    Global.Add("ffcResidual", "(",
-               new OneOperator7_<long, pmesh3, KN<double> *, KN<long> *, KNM<double> *, KN<double> *,
-                                 KN<double> *, KN<double> *>(ffcResidual));
-    Global.Add("ffcAugment", "(",
-               new OneOperator7_<long, pmesh3, KN<double> *, KN<long> *, KNM<double> *, KN<double> *,
-                                 KN<double> *, KN<double> *>(ffcAugment));
-    Global.Add("ffcPoints", "(",
-               new OneOperator7_<long, pmesh3, KN<double> *, KN<long> *, KNM<double> *, KN<double> *,
-                                 KN<double> *, KNM<double> *>(ffcPoints));
-    typedef KN<double> *V;
-    Global.Add("ffcAssemble", "(",
-               new OneOperatorN<long, pmesh3, V, V, KN<long> *, KNM<double> *, V, V, V, V, Matrice_Creuse<double> *>(
-                   ffcAssembleF));
-    Global.Add("ffcResidual", "(",
-               new OneOperatorN<long, pmesh3, V, V, KN<long> *, KNM<double> *, V, V, V, V>(ffcResidualF));
-    Global.Add("ffcAugment", "(",
-               new OneOperatorN<long, pmesh3, V, V, KN<long> *, KNM<double> *, V, V, V, V>(ffcAugmentF));
-    Global.Add("ffcPoints", "(",
-               new OneOperatorN<long, pmesh3, V, V, KN<long> *, KNM<double> *, V, V, V, KNM<double> *>(ffcPointsF));
-    typedef KNM<double> *T;
-    typedef Matrice_Creuse<double> *M;
-    Global.Add("ffcNTSNodes", "(", new OneOperatorN<long, pmesh3, V, KN<long> *, V, T>(ffcNTSNodes));
-    Global.Add("ffcNTSRows", "(", new OneOperatorN<long, pmesh3, V, V, KN<long> *, T, V, V, M, M, M, V>(ffcNTSRows));
-    Global.Add("ffcNTSUpdate", "(", new OneOperatorN<long, pmesh3, V, V, KN<long> *, T, V, V, V>(ffcNTSUpdate));
-    Global.Add("ffcNTSPoints", "(", new OneOperatorN<long, pmesh3, V, T, T>(ffcNTSPoints));
-    Global.Add("ffcReducedMissing", "(", new OneOperator3_<long, M, KN<long> *, KN<long> *>(ffcReducedMissing));
-    Global.Add("ffcReducedAdd", "(", new OneOperator4_<long, V, KN<long> *, V, long>(ffcReducedAdd));
-    Global.Add("ffcReducedSolve", "(", new OneOperatorN<long, V, KN<long> *, M, V, V, V>(ffcReducedSolve));
     Global.Add("ffcSaveVTK", "(", new OneOperator2_<long, string *, KNM<double> *>(ffcSaveVTK));
     Global.Add("ffcWriteColumns", "(",
                new OneOperator4_<long, string *, string *, KNM<double> *, KN<double> *>(ffcWriteColumns));
