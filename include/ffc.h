@@ -345,6 +345,15 @@ typedef struct {
                           end of the step (1/time, e.g. gamma / (beta dt) for
                           Newmark), >= 0.  The tangent is K + dvdu D with
                           D = dR/dv the damping matrix; 0 gives K alone */
+    const double *fixed; /* [3*nv] or NULL: nonzero where a node's dof is
+                          prescribed (Dirichlet).  Nodal friction drops a
+                          prescribed direction e_k of a slave node that lies in
+                          the contact plane (|n~_k| < 0.9, as node-to-surface
+                          does): the k components of the node's weighted slip
+                          and weighted normal are zeroed before its return
+                          map.  On a symmetry plane the mirror half's
+                          contributions cancel them; elsewhere the support
+                          carries the force along e_k */
 } ffc_law;
 
 /* ------------------------------------------------------ Coulomb friction */
@@ -546,6 +555,12 @@ int ffc_scene_set_pair_opts(ffc_scene *s, int k, const ffc_pair_opts *o);
 /* Dynamic scenes: the velocities v[nv*3] at the end of the step, the
  * step dt and the integrator's dv/du, read by the friction terms. */
 int ffc_scene_set_motion(ffc_scene *s, const double v[], double dt, double dvdu);
+
+/* The prescribed dofs of the scene's nodes: fixed[nv*3] nonzero where a
+ * dof is prescribed (Dirichlet), copied; NULL clears them.  Read by the
+ * nodal friction law (ffc_law.fixed): a prescribed direction in a slave
+ * node's contact plane is dropped from its return map. */
+int ffc_scene_set_fixed(ffc_scene *s, const double fixed[]);
 
 /* Contact search of every pair at x = X + u[nv*3]; *linked (may be NULL)
  * the number of linked points.  On error *bad is the pair (or the node

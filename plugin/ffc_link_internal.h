@@ -51,6 +51,7 @@ typedef struct {
 /* return map at a node */
 typedef struct {
     double r[3], n[3], mnorm;   /* weighted slip (or relative velocity), normal n~, |m| */
+    int drop;                   /* bit k: direction e_k dropped (prescribed, in the contact plane) */
     ffc_fric f;                 /* traction T_a and its derivatives */
 } nfn_t;
 

@@ -34,6 +34,12 @@
  *     dT_a = dT/dr dr~_a + dT/dn dn~_a - dT/dt_N (eps H(t_a) / W_a) C_a^T,
  *     dr~_a = [sum_q N_a (da_q Q_q + (r_q - r~_a) dda_q^T)] / W_a,
  *     dn~_a = (I - n~ n~^T) / |m_a| sum_q N_a (da_q dn_q + n_q dda_q^T).
+ * A prescribed direction e_k of node a in its contact plane (law->fixed,
+ * |n~_k| < 0.9) is dropped: r~ and m replaced by Q r~ and Q m, Q = I - e_k e_k^T
+ * (constant), so dr~ and dm become Q dr~ and Q dm, and n~ = Q m / |Q m|;
+ * the trial uses Q lambda_T (so the update keeps lambda_T,k = 0).
+ * On a symmetry plane normal to e_k this is the mirror half's share (its
+ * slip and normal have the opposite k components).
  * The Uzawa update lambda_T,a <- T_a drives the weighted slip of sticking
  * nodes to zero: one tangential constraint (a 2-vector) per node, as many
  * as there are tangential unknowns (pointwise multipliers would impose
@@ -160,14 +166,24 @@ int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw
             if (!lam_t) continue;
             nfn_t *T = &w->T[v];
             T->mnorm = sqrt(ffc__dot(T->n, T->n));
+            /* prescribed directions in the contact plane: their components of
+             * the weighted slip and normal dropped (law->fixed) */
+            T->drop = 0;
+            for (int i = 0; law->fixed && T->mnorm > 0.0 && i < 3; i++)
+                if (law->fixed[3 * v + i] != 0.0 && fabs(T->n[i]) < 0.9 * T->mnorm) T->drop |= 1 << i;
+            for (int i = 0; i < 3; i++)
+                if (T->drop & (1 << i)) T->r[i] = T->n[i] = 0.0;
+            if (T->drop) T->mnorm = sqrt(ffc__dot(T->n, T->n));
             for (int i = 0; i < 3; i++) {
                 T->r[i] /= w->Wn[v];
                 T->n[i] = T->mnorm > 0.0 ? T->n[i] / T->mnorm : 0.0;
             }
             if (!(T->mnorm > 0.0)) continue; /* opposite normals cancel: no friction */
-            int s = ffc_friction_map(T->n, lam_t + 3 * v, T->r, law->mu, law->eps_t, w->tn[v], &T->f);
+            double lt[3];                /* lambda_T without the dropped components */
+            for (int i = 0; i < 3; i++) lt[i] = (T->drop & (1 << i)) ? 0.0 : lam_t[3 * v + i];
+            int s = ffc_friction_map(T->n, lt, T->r, law->mu, law->eps_t, w->tn[v], &T->f);
             if (s) { ffc__nodal_free(w); return s; }
-            if (w->on[v] && !(w->tn[v] > 0.0)) touching_stick(T, lam_t + 3 * v, law->eps_t);
+            if (w->on[v] && !(w->tn[v] > 0.0)) touching_stick(T, lt, law->eps_t);
             if (stats && T->f.state != FFC_FRIC_OPEN) {
                 stats->stick += T->f.state == FFC_FRIC_STICK;
                 stats->slip += T->f.state == FFC_FRIC_SLIP;
@@ -355,11 +371,15 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
                 for (long j = 0; j < nloc; j++)
                     if (k.Bv[i] != 0.0 && k.Cv[j] != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[i], k.loc[j], c * k.Bv[i] * k.Cv[j]);
             if (ft) {
-                /* dn~ = (I - n~ n~^T) / |m| (accumulated), then
+                /* dropped directions: dr~ and dm without their components;
+                 * dn~ = (I - n~ n~^T) / |m| (accumulated), then
                  * dT_a = dT/dr dr~ + dT/dn dn~ - dT/dt_N c C^T, K += Bf dT_a */
                 const double *nn = Tn->n;
                 for (long j = 0; j < nloc; j++) {
-                    double *q = &k.Nt[3 * j], d = ffc__dot(nn, q);
+                    double *q = &k.Nt[3 * j];
+                    for (int i = 0; i < 3; i++)
+                        if (Tn->drop & (1 << i)) q[i] = k.Rt[3 * j + i] = 0.0;
+                    const double d = ffc__dot(nn, q);
                     for (int i = 0; i < 3; i++) q[i] = (q[i] - nn[i] * d) / Tn->mnorm;
                 }
                 for (long j = 0; j < nloc; j++) {

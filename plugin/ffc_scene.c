@@ -45,6 +45,7 @@ struct ffc_scene {
     int np, cap;       /* pairs, capacity */
     scene_pair *p;     /* [cap] */
     ffc__bulk *bulk;   /* the bulk factorization (NULL: none set) */
+    double *fixed;     /* [nv*3] prescribed dofs (nonzero), or NULL: none given */
 };
 
 ffc_pair_opts ffc_pair_defaults(void)
@@ -111,6 +112,7 @@ void ffc_scene_free(ffc_scene *s)
     free(s->v);
     free(s->x);
     ffc__bulk_free(s->bulk);
+    free(s->fixed);
     free(s);
 }
 
@@ -328,6 +330,21 @@ int ffc_scene_set_pair_opts(ffc_scene *s, int k, const ffc_pair_opts *o)
     return FFC_OK;
 }
 
+int ffc_scene_set_fixed(ffc_scene *s, const double fixed[])
+{
+    if (!s) return FFC_ERR_NULL;
+    if (!fixed) {
+        free(s->fixed);
+        s->fixed = NULL;
+        return FFC_OK;
+    }
+    for (long i = 0; i < 3 * s->nv; i++)
+        if (!isfinite(fixed[i])) return FFC_ERR_NONFINITE;
+    if (!s->fixed && !(s->fixed = malloc(3 * (size_t)s->nv * sizeof *s->fixed))) return FFC_ERR_MEMORY;
+    memcpy(s->fixed, fixed, 3 * (size_t)s->nv * sizeof *fixed);
+    return FFC_OK;
+}
+
 int ffc_scene_set_motion(ffc_scene *s, const double v[], double dt, double dvdu)
 {
     if (!s || !v) return FFC_ERR_NULL;
@@ -406,6 +423,7 @@ static pair_call pair_view(const ffc_scene *s, const scene_pair *p, const double
     law->eps_t = p->o.eps_t > 0 ? p->o.eps_t : (s->fx.dynamic ? p->o.eps_n * s->dt : p->o.eps_n);
     law->dt = s->dt;
     law->dvdu = s->dvdu;
+    law->fixed = s->fixed;
     *fx = s->fx;
     fx->friction = p->o.mu > 0; /* a frictionless pair computes no friction term */
     return c;

@@ -1245,6 +1245,17 @@ double sceneAutoPenalty(const Named &, FFScene *const &C, long const &k, KN<doub
 }
 
 // ffcInverted(C, u): the first tetrahedron inverted or collapsed at u, -1 if none.
+// ffcFixed(C, fixed): the prescribed dofs (fixed[i] != 0, 3 per node: a
+// Dirichlet mask), read by the nodal friction law (ffc_scene_set_fixed).
+long sceneFixed(const Named &, FFScene *const &C, KN<double> *const &fixed)
+{
+    const char *fn = "ffcFixed";
+    SceneData &d = need_scene(fn, C);
+    int st = ffc_scene_set_fixed(d.s, need_scene_u(fn, d, fixed, "fixed"));
+    if (st) scene_error(fn, st, -1, "the prescribed dofs");
+    return 0;
+}
+
 long sceneInverted(const Named &, FFScene *const &C, KN<double> *const &u)
 {
     const char *fn = "ffcInverted";
@@ -1451,6 +1462,7 @@ void init_scene()
     Global.Add("ffcMultipliers", "(", named<long, S, long, V>("ffcMultipliers", nullptr, 0, sceneMultipliers));
     Global.Add("ffcMultipliers", "(", named<long, S, long, V, V>("ffcMultipliers", nullptr, 0, sceneMultipliersT));
     Global.Add("ffcInverted", "(", named<long, S, V>("ffcInverted", nullptr, 0, sceneInverted));
+    Global.Add("ffcFixed", "(", named<long, S, V>("ffcFixed", nullptr, 0, sceneFixed));
     Global.Add("ffcAutoPenalty", "(", named<double, S, long, V, V>("ffcAutoPenalty", nullptr, 0, sceneAutoPenalty));
     Global.Add("ffcFacetSize", "(", named<double, S>("ffcFacetSize", pair_only_names, 1, sceneFacetSize));
     typedef Matrice_Creuse<double> *M;

@@ -505,12 +505,58 @@ static void test_assembled_tangent(void **state)
             ascene_make(a, nodal, &s);
             ffc_effects fx = {1, 0, finite};
             /* all stick (a huge mu), all slip (eps_T |r| >> mu t_N) */
-            ffc_law stick = {60, nodal, 0, 1e6, 5.0, 0.0, 0.0};
+            ffc_law stick = {60, nodal, 0, 1e6, 5.0, 0.0, 0.0, NULL};
             assembled_check(a, &fx, &stick, FFC_FRIC_STICK);
-            ffc_law slip = {60, nodal, 0, 0.3, 2000.0, 0.0, 0.0};
+            ffc_law slip = {60, nodal, 0, 0.3, 2000.0, 0.0, 0.0, NULL};
             assembled_check(a, &fx, &slip, FFC_FRIC_SLIP);
             free(a);
         }
+}
+
+/* Nodal friction with prescribed directions (ffc_law.fixed): every slave
+ * node's x dof prescribed (x lies in the contact plane): the tangent of
+ * the dropped law against central differences, all stick and all slip,
+ * small strain and finite deformation; the update leaves lambda_T,x = 0 at
+ * every slave node, and a node without a prescribed dof is unchanged. */
+static void test_assembled_fixed_direction(void **state)
+{
+    (void)state;
+    uint64_t s = 31;
+    static double fixed[NV * 3];
+    memset(fixed, 0, sizeof fixed);
+    for (int v = 25; v < NV; v++) fixed[3 * v] = 1.0;      /* the slave nodes' x */
+    for (int finite = 0; finite <= 1; finite++) {
+        ascene *a = malloc(sizeof *a);
+        ascene_make(a, 1, &s);
+        ffc_effects fx = {1, 0, finite};
+        ffc_law stick = {60, 1, 0, 1e6, 5.0, 0.0, 0.0, fixed};
+        assembled_check(a, &fx, &stick, FFC_FRIC_STICK);
+        ffc_law slip = {60, 1, 0, 0.3, 2e5, 0.0, 0.0, fixed};   // (the y slip alone must exceed the cone)
+        assembled_check(a, &fx, &slip, FFC_FRIC_SLIP);
+        /* the update: no x traction at any slave node; the residual differs
+         * from the undropped law's (the x friction is gone) */
+        long bad;
+        ffc_stats st;
+        double lt0[NL * 3];
+        memcpy(lt0, a->lam_t, sizeof lt0);
+        assert_int_equal(ffc_augment(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &slip, &st, &bad), FFC_OK);
+        assert_true(st.slip > 0);
+        for (int v = 25; v < NV; v++) assert_true(a->lam_t[3 * v] == 0.0);
+        double tymax = 0;
+        for (int v = 25; v < NV; v++) tymax = fmax(tymax, fabs(a->lam_t[3 * v + 1]));
+        assert_true(tymax > 0.0);
+        memcpy(a->lam_t, lt0, sizeof lt0);
+        ffc_law plain = slip;
+        plain.fixed = NULL;
+        double R0[NV * 3] = {0}, R1[NV * 3] = {0};
+        long nt;
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &plain, R0, 0, NULL, NULL, NULL, &nt, &st, &bad), FFC_OK);
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &slip, R1, 0, NULL, NULL, NULL, &nt, &st, &bad), FFC_OK);
+        double d = 0;
+        for (int i = 0; i < NV * 3; i++) d = fmax(d, fabs(R1[i] - R0[i]));
+        assert_true(d > 1e-6);
+        free(a);
+    }
 }
 
 /* The velocity form assembled, both laws, all stick and all slip: the
@@ -526,10 +572,10 @@ static void test_assembled_velocity_form(void **state)
         ascene *a = malloc(sizeof *a);
         ascene_make(a, nodal, &s);
         ffc_effects fx = {1, 1, 0};
-        ffc_law stick = {60, nodal, 0, 1e6, 5.0 * dt, dt, 50.0};
+        ffc_law stick = {60, nodal, 0, 1e6, 5.0 * dt, dt, 50.0, NULL};
         assembled_check_motion(a, &fx, &stick, FFC_FRIC_STICK, 0);
         assembled_check_motion(a, &fx, &stick, FFC_FRIC_STICK, 1);
-        ffc_law slip = {60, nodal, 0, 0.3, 2000.0 * dt, dt, 50.0};
+        ffc_law slip = {60, nodal, 0, 0.3, 2000.0 * dt, dt, 50.0, NULL};
         assembled_check_motion(a, &fx, &slip, FFC_FRIC_SLIP, 0);
         assembled_check_motion(a, &fx, &slip, FFC_FRIC_SLIP, 1);
         /* agreement with the incremental form (ascene_make: v = (u - u^n) / 0.01) */
@@ -572,7 +618,7 @@ static void test_augment(void **state)
         ascene *a = malloc(sizeof *a);
         ascene_make(a, nodal, &s);
         ffc_effects fx = {1, 0, 0};
-        ffc_law law = {60, nodal, 0, 0.3, 30.0, 0.0, 0.0};
+        ffc_law law = {60, nodal, 0, 0.3, 30.0, 0.0, 0.0, NULL};
         double P[NL * FFC_POINT_COLS], lt0[NL * 3];
         long bad;
         assert_int_equal(ffc_points(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &law, P, &bad), FFC_OK);
@@ -641,6 +687,7 @@ int main(void)
         cmocka_unit_test(test_link_velocity_form),
         cmocka_unit_test(test_velocity_matches_incremental),
         cmocka_unit_test(test_assembled_tangent),
+        cmocka_unit_test(test_assembled_fixed_direction),
         cmocka_unit_test(test_assembled_velocity_form),
         cmocka_unit_test(test_augment),
     };

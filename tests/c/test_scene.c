@@ -226,6 +226,22 @@ static void test_commit_restore(void **state)
     ffc_scene_free(s);
 }
 
+/* The prescribed dofs: copied, cleared by NULL, a NaN refused (the old
+ * mask kept), a null scene refused. */
+static void test_set_fixed(void **state)
+{
+    (void)state;
+    double f[3 * NV] = {0};
+    ffc_scene *s = make(3, 0);
+    f[5] = 1.0;
+    assert_int_equal(ffc_scene_set_fixed(s, f), FFC_OK);
+    f[7] = NAN;
+    assert_int_equal(ffc_scene_set_fixed(s, f), FFC_ERR_NONFINITE);
+    assert_int_equal(ffc_scene_set_fixed(s, NULL), FFC_OK);
+    assert_int_equal(ffc_scene_set_fixed(NULL, f), FFC_ERR_NULL);
+    ffc_scene_free(s);
+}
+
 /* Friction belongs to the pair: a frictional pair beside a frictionless
  * one; only the first computes friction, and its tangent is non-symmetric. */
 static void test_friction_per_pair(void **state)
@@ -457,6 +473,7 @@ int main(void)
         cmocka_unit_test(test_two_pairs_independent),
         cmocka_unit_test(test_augment_shared_array),
         cmocka_unit_test(test_assembly_is_sum),
+        cmocka_unit_test(test_set_fixed),
         cmocka_unit_test(test_commit_restore),
         cmocka_unit_test(test_friction_per_pair),
         cmocka_unit_test(test_touching_stick),
