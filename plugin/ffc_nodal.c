@@ -169,10 +169,11 @@ int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw
             /* prescribed directions in the contact plane: their components of
              * the weighted slip and normal dropped (law->fixed) */
             T->drop = 0;
-            for (int i = 0; law->fixed && T->mnorm > 0.0 && i < 3; i++)
-                if (law->fixed[3 * v + i] != 0.0 && fabs(T->n[i]) < 0.9 * T->mnorm) T->drop |= 1 << i;
-            for (int i = 0; i < 3; i++)
-                if (T->drop & (1 << i)) T->r[i] = T->n[i] = 0.0;
+            for (int i = 0; law->fixed && i < 3; i++)
+                if (law->fixed[3 * v + i] != 0.0 && fabs(T->n[i]) < 0.9 * T->mnorm) {
+                    T->drop |= 1 << i;
+                    T->r[i] = T->n[i] = 0.0;
+                }
             if (T->drop) T->mnorm = sqrt(ffc__dot(T->n, T->n));
             for (int i = 0; i < 3; i++) {
                 T->r[i] /= w->Wn[v];

@@ -90,6 +90,21 @@ static void rhs(double b[N])
     for (int i = 0; i < 3; i++) b[i] = TGV * 0.01 * (i + 1); /* imposed values 0.01, 0.02, 0.03 */
 }
 
+/* x against a dense solve of K + Kc (Kd += Kc, destroyed), to 1e-10 of
+ * the largest |x|: both are backward stable on a matrix of condition ~1e4
+ * (free rows) */
+static void check_dense(double Kd[N * N], long nc, const long ci[], const long cj[], const double cv[],
+                        const double b[N], const double x[N])
+{
+    double bd[N], xd[N];
+    for (long k = 0; k < nc; k++) Kd[ci[k] * N + cj[k]] += cv[k];
+    memcpy(bd, b, sizeof bd);
+    dense_solve(Kd, bd, xd);
+    double xmax = 0;
+    for (int i = 0; i < N; i++) xmax = fmax(xmax, fabs(xd[i]));
+    for (int i = 0; i < N; i++) assert_close(x[i], xd[i], 1e-10 * xmax);
+}
+
 /* the reduced solve against a dense solve of K + Kc, with body B held
  * only by the contact tangent (K singular: the shift makes it factorizable) */
 static void test_matches_dense(void **state)
@@ -97,21 +112,14 @@ static void test_matches_dense(void **state)
     (void)state;
     ffc_scene *s = scene();
     long Ti[200], Tj[200], ci[100], cj[100], bad = -1;
-    double Tv[200], cv[100], Kd[N * N], b[N], x[N], xd[N];
+    double Tv[200], cv[100], Kd[N * N], b[N], x[N];
     const long nt = bulk(Ti, Tj, Tv, Kd);
     assert_int_equal(ffc_scene_set_bulk(s, N, nt, Ti, Tj, Tv, 1000, &bad), FFC_OK);
     const int c[] = {20, 21, 22, 30, 31, 32};
     const long nc = contact(c, 6, 40.0, ci, cj, cv);
     rhs(b);
     assert_int_equal(ffc_scene_solve(s, nc, ci, cj, cv, b, x, &bad), FFC_OK);
-    for (long k = 0; k < nc; k++) Kd[ci[k] * N + cj[k]] += cv[k];
-    double bd[N];
-    memcpy(bd, b, sizeof bd);
-    dense_solve(Kd, bd, xd);
-    double xmax = 0;
-    for (int i = 0; i < N; i++) xmax = fmax(xmax, fabs(xd[i]));
-    /* both are backward stable on a matrix of condition ~1e4 (free rows) */
-    for (int i = 0; i < N; i++) assert_close(x[i], xd[i], 1e-10 * xmax);
+    check_dense(Kd, nc, ci, cj, cv, b, x);
     for (int i = 0; i < 3; i++) assert_close(x[i], 0.01 * (i + 1), 1e-15);
     ffc_solve_info in;
     assert_int_equal(ffc_scene_solve_info(s, &in), FFC_OK);
@@ -131,7 +139,7 @@ static void test_mostly_dirichlet(void **state)
     (void)state;
     ffc_scene *s = scene();
     long Ti[250], Tj[250], ci[100], cj[100], bad = -1;
-    double Tv[250], cv[100], Kd[N * N], b[N], x[N], xd[N], bd[N];
+    double Tv[250], cv[100], Kd[N * N], b[N], x[N];
     const long nt = bulk_dir(30, Ti, Tj, Tv, Kd);
     assert_int_equal(ffc_scene_set_bulk(s, N, nt, Ti, Tj, Tv, 1000, &bad), FFC_OK);
     const int c[] = {35, 36, 37, 40, 41, 42};
@@ -139,12 +147,7 @@ static void test_mostly_dirichlet(void **state)
     rhs(b);
     for (int i = 3; i < 30; i++) b[i] = 0.0; /* imposed values 0 on the further Dirichlet rows */
     assert_int_equal(ffc_scene_solve(s, nc, ci, cj, cv, b, x, &bad), FFC_OK);
-    for (long k = 0; k < nc; k++) Kd[ci[k] * N + cj[k]] += cv[k];
-    memcpy(bd, b, sizeof bd);
-    dense_solve(Kd, bd, xd);
-    double xmax = 0;
-    for (int i = 0; i < N; i++) xmax = fmax(xmax, fabs(xd[i]));
-    for (int i = 0; i < N; i++) assert_close(x[i], xd[i], 1e-10 * xmax);
+    check_dense(Kd, nc, ci, cj, cv, b, x);
     ffc_solve_info in;
     assert_int_equal(ffc_scene_solve_info(s, &in), FFC_OK);
     assert_true(in.rcond > 1e-12);     /* the tgv rows are not in the factorized matrix's conditioning */
