@@ -13,6 +13,8 @@ enum {
     FFC_OK = 0,
     FFC_INFO_EDGE = 1,            /* projection foot clamped onto a facet edge */
     FFC_INFO_VERTEX = 2,          /* projection foot clamped onto a facet vertex */
+    FFC_INFO_MAXIT = 3,           /* Newton stopped at its iteration limit */
+    FFC_INFO_NODESCENT = 4,       /* Newton found no direction that lowers the residual */
     FFC_ERR_NULL = -1,            /* a required pointer is NULL */
     FFC_ERR_SIZE = -2,            /* an array size or count is out of range */
     FFC_ERR_NONFINITE = -3,       /* NaN or Inf in an input */
@@ -704,6 +706,76 @@ int ffc_scene_solve(ffc_scene *s, long nt, const long Ti[], const long Tj[], con
 /* Counters of the bulk solves since the last ffc_scene_set_bulk (zero
  * without a K). */
 int ffc_scene_solve_info(const ffc_scene *s, ffc_solve_info *info);
+
+/* Newton's method on the condensed contact problem of a small-strain
+ * augmented Lagrangian scene at fixed links and multipliers (the inner
+ * loop of an augmentation, run in C on the contact dofs only).
+ *
+ * Formulation: the bulk is linear, r(u) = K u - f + F_c(u) on the free
+ * dofs.  From u (residual r[n] given), the increment d solves
+ * K d + F_c(u + d) = b' = -(r - F_c(u)).  Let C be the dofs of every
+ * linked point's slave and master facets (not Dirichlet), G = P_C K^-1
+ * P_C^T their compliance (block back-solves, kept), d0 = K^-1 b'.  The
+ * free dofs outside C carry no contact force, so with y = d_C the
+ * interior is eliminated exactly and
+ *     rho(y) = G^-1 (y - d0_C) + F_c(u + d)_C = 0     (m equations)
+ * is the residual of the full system at the equilibrated interior.  Its
+ * Jacobian is G^-1 + Kc_CC; the Newton step solves
+ *     (I + G Kc_CC) dy = -G rho,
+ * reduced to the dofs a that Kc touches (Kc_CC = E_a M E_a^T: t + G_aa M
+ * t = -(G rho)_a, dy = -G rho - G_Ca M t), an |a| x |a| dense LU.  The
+ * line search is the scene driver's: the root of g(s) = rho(y + s dy) . dy
+ * by regula falsi (Illinois); a direction with g(0) >= 0 is replaced by
+ * the material tangent's.  The primary unknown is the reaction
+ * z = G^-1 (y - d0_C) that holds C at y: the Newton equation gives its
+ * step, dz = -rho - Kc_CC dy, and y = d0_C + G z is recomputed from it
+ * (no drift between the two; a Cholesky factor of G gives only the
+ * start, y = 0: C held at u, the interior equilibrated).  At the end
+ * d = d0 + K^-1 P_C^T z (one back-solve): the state whose residual is
+ * rho.  With the shift S of a singular K (see above), K + S and
+ * F_c - S y take the place of K and F_c.  A dynamic scene's velocities
+ * follow u: v = v0 + dvdu (u + d - u).  Per call: two back-solves, one
+ * contact evaluation per iteration and line-search point, a Cholesky of
+ * G when C grew. */
+enum { FFC_NEWTON_HIST = 64 };
+typedef struct {
+    int max_iter;      /* Newton iterations at most (>= 1) */
+    int max_ls;        /* line-search evaluations per iteration (>= 0; 0: full steps) */
+    double ls_tol;     /* a step is taken once |g(s)| <= ls_tol |g(0)| (0 < ls_tol < 1) */
+    double ftol;       /* converged when |rho| <= max(ftol, frel x the contact force
+                          scale) (force), > 0 */
+    double frel;       /* relative tolerance (1), >= 0; the scale is the largest
+                          |Fx| + |Fy| + |Fz| of the total normal contact force met */
+    int tangent;       /* FFC_TANGENT_CONSISTENT or FFC_TANGENT_MATERIAL */
+} ffc_newton_opts;
+
+typedef struct {
+    int iters;         /* Newton iterations (condensed linear solves) */
+    int evals;         /* contact evaluations */
+    int fallbacks;     /* directions taken from the material tangent */
+    long m;            /* contact dofs of the condensed problem (count) */
+    long support;      /* the largest dense system solved (count) */
+    double res;        /* |rho| at the end (force) */
+    int nhist;         /* entries of hist */
+    double hist[FFC_NEWTON_HIST]; /* |rho| at each iteration's start, then the last (force) */
+} ffc_newton_info;
+
+/* Defaults: max_iter 25, max_ls 8, ls_tol 0.5, ftol 0 (must be set),
+ * frel 0, consistent tangent. */
+ffc_newton_opts ffc_newton_defaults(void);
+
+/* Runs the condensed Newton from u[n] (n = 3 nv) with its residual r[n]
+ * (FreeFEM's tgv rows included: a Dirichlet row's r / K_ii is the error
+ * of its value, which the first step removes); u is the converged
+ * displacement on FFC_OK, the last iterate on FFC_INFO_MAXIT and
+ * FFC_INFO_NODESCENT, unchanged on an error.  FFC_ERR_EMPTY without a
+ * bulk matrix, FFC_ERR_VALUE for a scene with node-to-surface pairs or
+ * options out of range, FFC_ERR_CAPACITY when C holds more than the bulk's
+ * mmax dofs (*bad = their count), FFC_ERR_SINGULAR when K + S or a
+ * condensed system cannot be factorized, FFC_ERR_NONFINITE (*bad = the
+ * entry of r or u). */
+int ffc_scene_newton(ffc_scene *s, const double r[], double u[], const ffc_newton_opts *o, ffc_newton_info *info,
+                     long *bad);
 
 /* ------------------------------------- node-to-surface Lagrange multipliers */
 /* Each slave node c is paired with the master facet (i, j, k) under it:

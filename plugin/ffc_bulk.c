@@ -37,6 +37,12 @@ struct ffc__bulk {
     long kvcap;
     long mmax;                 /* contact dofs this path takes at most */
     ffc_solve_info info;
+    /* the condensed Newton (ffc__bulk_newton) */
+    double *Gc;                /* [ld*ld] Cholesky factor of G (m x m, leading dimension m) */
+    long mc;                   /* the m of Gc (-1: none) */
+    long *ti, *tj;             /* [tcap] contact tangent triplets */
+    double *tv;                /* [tcap] */
+    long tcap;
 };
 
 static void bulk_free_factor(ffc__bulk *b)
@@ -57,6 +63,7 @@ void ffc__bulk_free(ffc__bulk *b)
     free(b->Ti); free(b->Tj); free(b->Tv); free(b->diag); free(b->big); free(b->sh);
     free(b->dof); free(b->G); free(b->pos); free(b->nd); free(b->A); free(b->piv);
     free(b->xc); free(b->w); free(b->r); free(b->dx); free(b->t); free(b->kv);
+    free(b->Gc); free(b->ti); free(b->tj); free(b->tv);
     free(b);
 }
 
@@ -96,6 +103,7 @@ int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const do
     b->n = n;
     b->nt = nt;
     b->mmax = mmax;
+    b->mc = -1;
     const size_t nn = (size_t)n, nz = (size_t)(nt > 0 ? nt : 1);
     b->Ti = malloc(nz * sizeof(long));
     b->Tj = malloc(nz * sizeof(long));
@@ -167,10 +175,14 @@ static int grow(ffc__bulk *b, long m)
     double *A = malloc((size_t)ld * ld * sizeof(double));
     long *dof = malloc((size_t)ld * sizeof(long)), *piv = malloc((size_t)ld * sizeof(long));
     double *xc = malloc((size_t)ld * sizeof(double));
-    if (!G || !A || !dof || !piv || !xc) {
-        free(G); free(A); free(dof); free(piv); free(xc);
+    double *Gc = malloc((size_t)ld * ld * sizeof(double));
+    if (!G || !A || !dof || !piv || !xc || !Gc) {
+        free(G); free(A); free(dof); free(piv); free(xc); free(Gc);
         return FFC_ERR_MEMORY;
     }
+    free(b->Gc);
+    b->Gc = Gc;
+    b->mc = -1;
     for (long c = 0; c < b->m; c++) {
         memcpy(G + c * ld, b->G + c * b->ld, (size_t)b->m * sizeof(double));
         dof[c] = b->dof[c];
@@ -250,6 +262,17 @@ static int factorize(ffc__bulk *b, long nnew, const long nd[])
     b->info.factorizations++;
     b->info.shift = nnew ? b->kfree : 0.0;
     return FFC_OK;
+}
+
+/* The first factorization: K alone; when K is singular (a body that only
+ * contact holds), K + S with the shift on the contact dofs nd[nnew] of the
+ * first solve.  An unshifted K keeps the contact tangent's support small
+ * (the condensed Newton's dense systems are over that support). */
+static int factorize_first(ffc__bulk *b, long nnew, const long nd[])
+{
+    int st = factorize(b, 0, NULL);
+    if (st == FFC_ERR_SINGULAR && nnew > 0) st = factorize(b, nnew, nd);
+    return st;
 }
 
 /* the compliance columns of the dofs nd[nnew], BLOCK back-solves at a time */
@@ -362,9 +385,7 @@ int ffc__bulk_solve(ffc__bulk *b, long nt, const long Ti[], const long Tj[], con
         return FFC_ERR_CAPACITY;
     }
     if (!b->L) {
-        /* the first factorization: the dofs of this contact tangent carry the
-         * shift (they hold any body that only contact holds) */
-        st = factorize(b, nnew, b->nd);
+        st = factorize_first(b, nnew, b->nd);
         if (st) return st;
     }
     if (nnew) {
@@ -403,3 +424,393 @@ void ffc__bulk_info(const ffc__bulk *b, ffc_solve_info *info)
 long ffc__bulk_n(const ffc__bulk *b) { return b ? b->n : 0; }
 
 double ffc__bulk_kfree(const ffc__bulk *b) { return b ? b->kfree : 0.0; }
+
+/* ------------------------------------------------- the condensed Newton */
+
+void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info);
+void dpotrs_(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda, double *b,
+             const int *ldb, int *info);
+void dgemv_(const char *trans, const int *m, const int *n, const double *alpha, const double *a, const int *lda,
+            const double *x, const int *incx, const double *beta, double *y, const int *incy);
+void dgemm_(const char *ta, const char *tb, const int *m, const int *n, const int *k, const double *alpha,
+            const double *a, const int *lda, const double *b, const int *ldb, const double *beta, double *c,
+            const int *ldc);
+void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
+void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a, const int *lda, const int *ipiv,
+             double *b, const int *ldb, int *info);
+
+/* the dofs cand[nc] that are neither Dirichlet rows nor in G yet, as new
+ * compliance columns (the first factorization before) */
+static int ensure_columns(ffc__bulk *b, long nc, const long cand[], long *bad)
+{
+    const long n = b->n;
+    for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = k;
+    long nnew = 0;
+    int st = FFC_OK;
+    for (long k = 0; k < nc; k++) {
+        const long d = cand[k];
+        if (d < 0 || d >= n) { *bad = k; st = FFC_ERR_INDEX; break; }
+        if (b->big[d] || b->pos[d] != -1) continue;
+        b->pos[d] = -2;
+        b->nd[nnew++] = d;
+    }
+    for (long k = 0; k < nnew; k++) b->pos[b->nd[k]] = -1;
+    for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = -1;
+    if (st) return st;
+    if (b->m + nnew > b->mmax) { *bad = b->m + nnew; return FFC_ERR_CAPACITY; }
+    if (!b->L && (st = factorize_first(b, nnew, b->nd))) return st;
+    if (nnew && (st = add_columns(b, nnew, b->nd))) return st;
+    b->info.m = b->m;
+    return FFC_OK;
+}
+
+/* Gc = the Cholesky factor of G (once per set of columns) */
+static int factor_g(ffc__bulk *b)
+{
+    const long m = b->m;
+    if (b->mc == m) return FFC_OK;
+    if (m > 2147483647L / (m ? m : 1)) return FFC_ERR_SIZE;
+    for (long j = 0; j < m; j++) memcpy(b->Gc + j * m, b->G + j * b->ld, (size_t)m * sizeof(double));
+    const int mi = (int)m;
+    int info = 0;
+    if (m) dpotrf_("L", &mi, b->Gc, &mi, &info);
+    if (info) return FFC_ERR_SINGULAR;
+    b->mc = m;
+    return FFC_OK;
+}
+
+/* x = G^-1 x (m) */
+static void g_inverse(const ffc__bulk *b, double x[])
+{
+    const int mi = (int)b->m, one = 1;
+    int info = 0;
+    if (mi) dpotrs_("L", &mi, &one, b->Gc, &mi, x, &mi, &info);
+}
+
+/* the contact force F (into b->r) and, with a tangent, its triplets
+ * (b->ti, tj, tv)[*nt] at w; the triplet buffers grow as needed */
+static int contact_eval(ffc__bulk *b, ffc__contact_fn fn, void *ctx, const double w[], int tangent, long *nt,
+                        double *fmag, long *bad)
+{
+    long need = tangent && b->tcap == 0 ? 4096 : 0;
+    for (int pass = 0; pass < 3; pass++) {
+        if (need > b->tcap) {
+            long *ti = realloc(b->ti, (size_t)need * sizeof(long));
+            if (ti) b->ti = ti;
+            long *tj = ti ? realloc(b->tj, (size_t)need * sizeof(long)) : NULL;
+            if (tj) b->tj = tj;
+            double *tv = tj ? realloc(b->tv, (size_t)need * sizeof(double)) : NULL;
+            if (!tv) return FFC_ERR_MEMORY;
+            b->tv = tv;
+            b->tcap = need;
+        }
+        memset(b->r, 0, (size_t)b->n * sizeof(double));
+        int st = fn(ctx, w, tangent, b->r, tangent ? b->tcap : 0, b->ti, b->tj, b->tv, nt, fmag, bad);
+        if (st != FFC_ERR_CAPACITY || !tangent) return st;
+        need = *nt + *nt / 2 + 64;
+    }
+    return FFC_ERR_CAPACITY;
+}
+
+/* Fp = F_C - sh_C y from the force in b->r; FFC_ERR_INDEX (*bad = the
+ * dof) when the force reaches a free dof outside C */
+static int force_c(const ffc__bulk *b, const double y[], double Fp[], long *bad)
+{
+    for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = k;
+    int st = FFC_OK;
+    for (long i = 0; i < b->n && !st; i++)
+        if (b->r[i] != 0.0 && !b->big[i] && b->pos[i] < 0) { *bad = i; st = FFC_ERR_INDEX; }
+    for (long k = 0; k < b->m; k++) {
+        const long d = b->dof[k];
+        Fp[k] = b->r[d] - b->sh[d] * y[k];
+        if (!isfinite(Fp[k])) { *bad = d; st = st ? st : FFC_ERR_NONFINITE; }
+        b->pos[d] = -1;
+    }
+    return st;
+}
+
+/* The Newton direction dy of (I + G Kc') dy = -G rho, Kc' = Kc_CC - S from
+ * the triplets (b->ti, tj, tv)[nt], reduced to Kc's support a: with
+ * q = G rho, t + G_aa M t = -q_a (dense LU, b->A), dy = -q - G_Ca M t;
+ * and the change of the reaction z = G^-1 (y - d0_C) it makes, by the
+ * Newton equation G^-1 dy = -rho - Kc' dy: dz = -rho - E_a M dy_a.
+ * M, Gaa [m*m] work (a x a used), ap[m], ad[m], q[m], t[m], s[m] work; *na
+ * the support's size. */
+static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], double dz[], double M[], double Gaa[],
+                     long ap[], long ad[], double q[], double t[], double s[], long *na, long *bad)
+{
+    const long m = b->m, ld = b->ld;
+    for (long k = 0; k < m; k++) b->pos[b->dof[k]] = k;
+    int st = FFC_OK;
+    /* support: dofs with a tangent entry or a shift */
+    long a = 0;
+    for (long k = 0; k < m; k++) ap[k] = -1;
+    for (long e = 0; e < nt && !st; e++) {
+        const long i = b->ti[e], j = b->tj[e];
+        if (b->tv[e] == 0.0 || b->big[i] || b->big[j]) continue;
+        if (!isfinite(b->tv[e])) { *bad = i; st = FFC_ERR_NONFINITE; break; }
+        if (b->pos[i] < 0 || b->pos[j] < 0) { *bad = b->pos[i] < 0 ? i : j; st = FFC_ERR_INDEX; break; }
+        const long pi = b->pos[i], pj = b->pos[j];
+        if (ap[pi] < 0) { ap[pi] = a; ad[a++] = pi; }
+        if (ap[pj] < 0) { ap[pj] = a; ad[a++] = pj; }
+    }
+    for (long k = 0; k < m && !st; k++)
+        if (b->sh[b->dof[k]] != 0.0 && ap[k] < 0) { ap[k] = a; ad[a++] = k; }
+    *na = a;
+    const int mi = (int)m, ldi = (int)ld, one = 1, ai = (int)a;
+    const double d1 = 1.0, d0 = 0.0;
+    if (!st && m > 0) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, rho, &one, &d0, q, &one); /* q = G rho */
+    if (!st && a > 0) {
+        /* M = Kc' on the support (dense, a x a), G_aa */
+        for (long k = 0; k < a * a; k++) M[k] = 0.0;
+        for (long e = 0; e < nt; e++) {
+            const long i = b->ti[e], j = b->tj[e];
+            if (b->tv[e] == 0.0 || b->big[i] || b->big[j]) continue;
+            M[ap[b->pos[i]] + ap[b->pos[j]] * a] += b->tv[e];
+        }
+        for (long k = 0; k < m; k++)
+            if (b->sh[b->dof[k]] != 0.0) M[ap[k] + ap[k] * a] -= b->sh[b->dof[k]];
+        for (long c = 0; c < a; c++) {
+            const double *g = b->G + ad[c] * ld;
+            for (long r = 0; r < a; r++) Gaa[r + c * a] = g[ad[r]];
+        }
+        /* A = I + G_aa M, column by column over M's nonzeros (a few dozen
+         * per column: a^2 x that, against 2 a^3 for a dense product) */
+        double *A = b->A;
+        for (long j = 0; j < a; j++) {
+            double *aj = A + j * a;
+            for (long r = 0; r < a; r++) aj[r] = 0.0;
+            aj[j] = 1.0;
+            const double *mj = M + j * a;
+            for (long i = 0; i < a; i++) {
+                const double v = mj[i];
+                if (v == 0.0) continue;
+                const double *gi = Gaa + i * a;
+                for (long r = 0; r < a; r++) aj[r] += v * gi[r];
+            }
+        }
+        double amax = 0.0;
+        for (long k = 0; k < a * a; k++) amax = fmax(amax, fabs(A[k]));
+        for (long r = 0; r < a; r++) t[r] = -q[ad[r]];
+        int *ip = (int *)b->piv, info = 0;
+        dgetrf_(&ai, &ai, A, &ai, ip, &info);
+        if (info < 0) st = FFC_ERR_VALUE;
+        for (long k = 0; k < a && !st; k++)
+            if (!(fabs(A[k + k * a]) > 1e-15 * amax)) st = FFC_ERR_SINGULAR;
+        if (!st) dgetrs_("N", &ai, &one, A, &ai, ip, t, &ai, &info);
+        if (!st && info) st = FFC_ERR_VALUE;
+        if (!st) dgemv_("N", &ai, &ai, &d1, M, &ai, t, &one, &d0, s, &one); /* s = M t */
+    }
+    if (!st) {
+        for (long k = 0; k < m; k++) dy[k] = -q[k];
+        for (long r = 0; r < a; r++) {
+            const double *g = b->G + ad[r] * ld; /* G symmetric: column ad[r] = row ad[r] */
+            const double sr = s[r];
+            for (long k = 0; k < m; k++) dy[k] -= g[k] * sr;
+        }
+        for (long k = 0; k < m; k++) dz[k] = -rho[k];
+        if (a > 0) {
+            for (long r = 0; r < a; r++) t[r] = dy[ad[r]];
+            dgemv_("N", &ai, &ai, &d1, M, &ai, t, &one, &d0, s, &one);
+            for (long r = 0; r < a; r++) dz[ad[r]] -= s[r];
+        }
+    }
+    for (long k = 0; k < m; k++) b->pos[b->dof[k]] = -1;
+    return st;
+}
+
+static double dot(long m, const double x[], const double y[])
+{
+    double v = 0.0;
+    for (long k = 0; k < m; k++) v += x[k] * y[k];
+    return v;
+}
+
+int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn fn, void *ctx, const double r[],
+                     double u[], const ffc_newton_opts *o, ffc_newton_info *info, long *bad)
+{
+    long dummy;
+    if (!bad) bad = &dummy;
+    *bad = -1;
+    if (!b || !fn || !r || !u || !o || !info || (nc > 0 && !cand)) return FFC_ERR_NULL;
+    memset(info, 0, sizeof *info);
+    if (nc < 0) return FFC_ERR_SIZE;
+    if (o->max_iter < 1 || o->max_ls < 0 || !(o->ls_tol > 0 && o->ls_tol < 1) || !(o->ftol > 0) ||
+        !isfinite(o->ftol) || !(o->frel >= 0) || !isfinite(o->frel) || (o->tangent != FFC_TANGENT_CONSISTENT && o->tangent != FFC_TANGENT_MATERIAL))
+        return FFC_ERR_VALUE;
+    const long n = b->n;
+    for (long i = 0; i < n; i++)
+        if (!isfinite(r[i]) || !isfinite(u[i])) { *bad = i; return FFC_ERR_NONFINITE; }
+    int st = ensure_columns(b, nc, cand, bad);
+    if (!st) st = factor_g(b);
+    if (st) return st;
+    const long m = b->m;
+    info->m = m;
+    /* m-vectors: y = d_C, z = G^-1 (y - d0_C) (the reaction that holds C at
+     * y: the primary unknown, y = d0_C + G z recomputed from it, so that y
+     * and z never drift apart), rho, dy, dz, gdz = G dz, Fp, rt, q, t, s;
+     * ap, ad */
+    const size_t mm = (size_t)(m > 0 ? m : 1);
+    double *buf = malloc(12 * mm * sizeof(double)), *M = malloc(mm * mm * sizeof(double)),
+           *Gaa = malloc(mm * mm * sizeof(double));
+    long *ibuf = malloc(2 * mm * sizeof(long));
+    if (!buf || !ibuf || !M || !Gaa) { free(buf); free(ibuf); free(M); free(Gaa); return FFC_ERR_MEMORY; }
+    double *y = buf, *z = y + mm, *rho = z + mm, *dy = rho + mm, *dz = dy + mm, *gdz = dz + mm, *Fp = gdz + mm,
+           *rt = Fp + mm, *q = rt + mm, *tt = q + mm, *ss = tt + mm, *d0c = ss + mm;
+    long *ap = ibuf, *ad = ibuf + mm;
+    double *w = b->w, *d0 = b->dx, *rhs = b->t;
+    const int mi = (int)m, ldi = (int)b->ld, one = 1;
+    const double d1 = 1.0;
+    /* the contact force at u: b' = -(r - F_c(u)) on free rows, -r on
+     * Dirichlet rows; d0 = K^-1 b' with the Dirichlet values moved to the
+     * right-hand side (as solve_once) */
+    long nt = 0;
+    double fm = 0.0, fscale = 0.0; /* the contact force scale: its largest at an iteration's start */
+    st = contact_eval(b, fn, ctx, u, FFC_TANGENT_NONE, &nt, &fm, bad);
+    info->evals++;
+    if (!st) {
+        for (long i = 0; i < n; i++) rhs[i] = b->big[i] ? -r[i] : b->r[i] - r[i];
+        for (long i = 0; i < n; i++) w[i] = b->big[i] ? rhs[i] / b->diag[i] : 0.0; /* Dirichlet increments */
+        for (long i = 0; i < n; i++)
+            if (b->big[i]) rhs[i] = b->kfree * w[i];
+        for (long k = 0; k < b->nt; k++)
+            if (b->big[b->Tj[k]] && !b->big[b->Ti[k]]) rhs[b->Ti[k]] -= b->Tv[k] * w[b->Tj[k]];
+        st = backsolve(b, rhs, d0);
+    }
+    /* y = d0_C + G z */
+#define Y_OF_Z()                                                                                                   \
+    do {                                                                                                           \
+        memcpy(y, d0c, mm * sizeof(double));                                                                       \
+        if (m) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, z, &one, &d1, y, &one);                                      \
+    } while (0)
+    if (!st) {
+        /* the start: C held at u (y = 0), the interior equilibrated */
+        for (long i = 0; i < n; i++) w[i] = u[i] + (b->big[i] ? d0[i] : 0.0);
+        for (long k = 0; k < m; k++) { d0c[k] = d0[b->dof[k]]; z[k] = -d0c[k]; }
+        g_inverse(b, z);
+        /* y = 0 exactly (d0_C + G z is zero to round-off): the first
+         * evaluation sees u itself, as a Newton step of the full system
+         * would (a point just touching sits on the kink of the law, where
+         * round-off would pick the other side) */
+        for (long k = 0; k < m; k++) y[k] = 0.0;
+    }
+    int status = FFC_INFO_MAXIT;
+    double last = 1.0, rprev = HUGE_VAL;
+    int stall = 0;
+    for (int it = 0; !st; it++) {
+        const int tan = it < o->max_iter ? o->tangent : FFC_TANGENT_NONE;
+        st = contact_eval(b, fn, ctx, w, tan, &nt, &fm, bad);
+        fscale = fmax(fscale, fm);
+        info->evals++;
+        if (!st) st = force_c(b, y, Fp, bad);
+        if (st) break;
+        for (long k = 0; k < m; k++) rho[k] = z[k] + Fp[k];
+        const double rn = sqrt(dot(m, rho, rho));
+        info->res = rn;
+        if (info->nhist < FFC_NEWTON_HIST) info->hist[info->nhist++] = rn;
+        const double tol = fmax(o->ftol, o->frel * fscale);
+        /* converged: the force test; or the round-off floor within 1e3 of
+         * it: a full step that changed nothing, or two iterations in a row
+         * that did not halve the residual (the noise of rho is about
+         * eps |Kc G| |z|: with a stiff penalty it lies above a tight tol) */
+        stall = rn < 0.5 * rprev ? 0 : stall + 1;
+        rprev = rn;
+        if (rn <= tol || ((last <= 1e-14 || stall >= 2) && rn <= 1e3 * tol)) { status = FFC_OK; break; }
+        if (it == o->max_iter) break;
+        long na = 0;
+        st = direction(b, nt, rho, dy, dz, M, Gaa, ap, ad, q, tt, ss, &na, bad);
+        if (st) break;
+        if (na > info->support) info->support = na;
+        /* the step of y that the step of z makes: G dz (= dy to the accuracy
+         * of the dense solve) */
+        if (m) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, dz, &one, &(double){0.0}, gdz, &one);
+        double g0 = dot(m, rho, gdz);
+        if (!(g0 < 0) && o->tangent == FFC_TANGENT_CONSISTENT) {
+            /* the consistent tangent is indefinite here: the material one's direction */
+            st = contact_eval(b, fn, ctx, w, FFC_TANGENT_MATERIAL, &nt, &fm, bad);
+            info->evals++;
+            if (!st) st = direction(b, nt, rho, dy, dz, M, Gaa, ap, ad, q, tt, ss, &na, bad);
+            if (st) break;
+            if (na > info->support) info->support = na;
+            info->fallbacks++;
+            if (m) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, dz, &one, &(double){0.0}, gdz, &one);
+            g0 = dot(m, rho, gdz);
+        }
+        if (!(g0 < 0)) { status = FFC_INFO_NODESCENT; break; }
+        info->iters++;
+        /* rho at z + a dz into rt; its g = rt . gdz */
+#define TRIAL(a_)                                                                                                  \
+    do {                                                                                                           \
+        for (long k = 0; k < m; k++) {                                                                             \
+            rt[k] = y[k] + (a_) * gdz[k];                                                                          \
+            w[b->dof[k]] = u[b->dof[k]] + rt[k];                                                                   \
+        }                                                                                                          \
+        st = contact_eval(b, fn, ctx, w, FFC_TANGENT_NONE, &nt, &fm, bad);                                         \
+        info->evals++;                                                                                             \
+        if (!st) {                                                                                                 \
+            st = force_c(b, rt, Fp, bad);                                                                          \
+            for (long k = 0; k < m; k++) rt[k] = z[k] + (a_) * dz[k] + Fp[k];                                      \
+        }                                                                                                          \
+    } while (0)
+        double a = 1.0;
+        if (o->max_ls > 0) {
+            /* the root of g(a) on [0, 1] by regula falsi (Illinois), taken
+             * once |g| <= ls_tol |g(0)|, or a = 1 while g < 0 there */
+            double alo = 0.0, glo = g0, ahi = 1.0, ghi = 0.0, at = -1.0; /* at: the last trial's a (rt) */
+            int side = 0;
+            for (int ls = 0; ls < o->max_ls; ls++) {
+                TRIAL(a);
+                at = a;
+                if (st) break;
+                const double g = dot(m, rt, gdz);
+                if (fabs(g) <= o->ls_tol * fabs(g0) || (g < 0 && a == ahi)) break;
+                if (g < 0) {
+                    alo = a; glo = g;
+                    if (side == -1) ghi *= 0.5;
+                    side = -1;
+                } else {
+                    ahi = a; ghi = g;
+                    if (side == 1) glo *= 0.5;
+                    side = 1;
+                }
+                const double an = alo - glo * (ahi - alo) / (ghi - glo);
+                a = fmax(alo + 0.05 * (ahi - alo), fmin(an, ahi - 0.05 * (ahi - alo)));
+            }
+            /* a step that makes |rho| ten times larger is halved */
+            for (int ls = 0; ls < o->max_ls && !st; ls++) {
+                if (a != at) TRIAL(a);
+                if (st || sqrt(dot(m, rt, rt)) <= 10 * rn) break;
+                a *= 0.5;
+            }
+            if (st) break;
+        }
+#undef TRIAL
+        for (long k = 0; k < m; k++) z[k] += a * dz[k];
+        Y_OF_Z();
+        double dn = 0.0, yn = 0.0;
+        for (long k = 0; k < m; k++) {
+            w[b->dof[k]] = u[b->dof[k]] + y[k];
+            dn += a * a * gdz[k] * gdz[k];
+            yn += w[b->dof[k]] * w[b->dof[k]];
+        }
+        last = a == 1.0 ? sqrt(dn / fmax(yn, 1e-300)) : 1.0;
+    }
+#undef Y_OF_Z
+    if (!st) {
+        /* d = d0 + K^-1 P_C^T z: the state whose residual is rho (d_C = y;
+         * not d0 - K^-1 P_C^T F_c, which moves C by G rho and the contact
+         * force by about Kc G rho, a hundred times rho at the automatic
+         * penalty) */
+        memset(rhs, 0, (size_t)n * sizeof(double));
+        for (long k = 0; k < m; k++) rhs[b->dof[k]] = -z[k];
+        st = backsolve(b, rhs, b->r);
+        if (!st)
+            for (long i = 0; i < n; i++) u[i] += d0[i] - b->r[i];
+    }
+    free(buf);
+    free(ibuf);
+    free(M);
+    free(Gaa);
+    b->info.solves++;
+    return st ? st : status;
+}

@@ -24,4 +24,17 @@ int ffc__bulk_solve(ffc__bulk *b, long nt, const long Ti[], const long Tj[], con
                     double x[], long *bad);
 void ffc__bulk_info(const ffc__bulk *b, ffc_solve_info *info);
 
+/* The contact force of the scene at u added into R[n] and, unless tangent
+ * is FFC_TANGENT_NONE, its tangent as triplets (ffc_scene_assemble's
+ * contract: FFC_ERR_CAPACITY with the count needed in *nt); *fmag the
+ * force scale of the convergence test (|Fx| + |Fy| + |Fz| of the total
+ * normal contact force). */
+typedef int (*ffc__contact_fn)(void *ctx, const double u[], int tangent, double R[], long cap, long Ti[], long Tj[],
+                               double Tv[], long *nt, double *fmag, long *bad);
+
+/* Newton's method on the condensed contact problem (see ffc_scene_newton);
+ * cand[nc] the dofs the contact force may touch (Dirichlet ones skipped). */
+int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn fn, void *ctx, const double r[],
+                     double u[], const ffc_newton_opts *o, ffc_newton_info *info, long *bad);
+
 #endif

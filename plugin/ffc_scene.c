@@ -937,3 +937,97 @@ int ffc_scene_nts_update(ffc_scene *s, const double u[], long nrows, const doubl
     *changes = ch;
     return FFC_OK;
 }
+
+/* ------------------------------------------- condensed Newton (small strain) */
+
+ffc_newton_opts ffc_newton_defaults(void)
+{
+    ffc_newton_opts o;
+    o.max_iter = 25;
+    o.max_ls = 8;
+    o.ls_tol = 0.5;
+    o.ftol = 0.0;
+    o.frel = 0.0;
+    o.tangent = FFC_TANGENT_CONSISTENT;
+    return o;
+}
+
+/* the contact evaluation the bulk's Newton calls: the scene's assembly,
+ * with a dynamic scene's velocities following u (v = v0 + dvdu (u - u0)) */
+typedef struct {
+    ffc_scene *s;
+    const double *u0;  /* [n] the displacement Newton starts from */
+    const double *v0;  /* [n] the velocities there, or NULL (quasi-static) */
+} newton_ctx;
+
+static int newton_contact(void *ctx, const double u[], int tangent, double R[], long cap, long Ti[], long Tj[],
+                          double Tv[], long *nt, double *fmag, long *bad)
+{
+    const newton_ctx *c = ctx;
+    if (c->v0)
+        for (long i = 0; i < 3 * c->s->nv; i++) c->s->v[i] = c->v0[i] + c->s->dvdu * (u[i] - c->u0[i]);
+    const int st = ffc_scene_assemble(c->s, u, tangent, R, cap, Ti, Tj, Tv, nt, bad);
+    *fmag = 0.0;
+    for (int i = 0; i < 3; i++) {
+        double f = 0.0;
+        for (int k = 0; k < c->s->np; k++) f += c->s->p[k].st.force[i];
+        *fmag += fabs(f);
+    }
+    return st;
+}
+
+int ffc_scene_newton(ffc_scene *s, const double r[], double u[], const ffc_newton_opts *o, ffc_newton_info *info,
+                     long *bad)
+{
+    long dummy;
+    if (!bad) bad = &dummy;
+    *bad = -1;
+    if (!s || !r || !u || !o || !info) return FFC_ERR_NULL;
+    memset(info, 0, sizeof *info);
+    if (!s->bulk) return FFC_ERR_EMPTY;
+    if (!penalties_set(s, bad)) return FFC_ERR_VALUE;
+    for (int k = 0; k < s->np; k++)
+        if (s->p[k].o.method == FFC_METHOD_NTS) { *bad = k; return FFC_ERR_VALUE; }
+    const long n = 3 * s->nv;
+    /* C: the dofs of every linked point's slave and master facets */
+    unsigned char *mark = calloc((size_t)n, 1);
+    long *cand = malloc((size_t)n * sizeof(long));
+    double *u0 = NULL, *v0 = NULL;
+    if (s->fx.dynamic) {
+        u0 = malloc((size_t)n * sizeof(double));
+        v0 = malloc((size_t)n * sizeof(double));
+    }
+    int st = FFC_OK;
+    if (!mark || !cand || (s->fx.dynamic && (!u0 || !v0))) st = FFC_ERR_MEMORY;
+    long nc = 0;
+    for (int k = 0; k < s->np && !st; k++) {
+        const scene_pair *p = &s->p[k];
+        for (long l = 0; l < p->nl; l++) {
+            const ffc_link *L = &p->links[l];
+            if (L->mf < 0) continue;
+            for (int side = 0; side < 2; side++) {
+                const long *F = side ? p->Fm + L->mf * s->nper : p->Fs + L->sf * s->nper;
+                for (int a = 0; a < s->nper; a++)
+                    for (int c = 0; c < 3; c++) {
+                        const long d = 3 * F[a] + c;
+                        if (!mark[d]) { mark[d] = 1; cand[nc++] = d; }
+                    }
+            }
+        }
+    }
+    if (!st) {
+        if (v0) {
+            memcpy(u0, u, (size_t)n * sizeof(double));
+            memcpy(v0, s->v, (size_t)n * sizeof(double));
+        }
+        newton_ctx c = {s, u0, v0};
+        st = ffc__bulk_newton(s->bulk, nc, cand, newton_contact, &c, r, u, o, info, bad);
+        if (v0) /* the velocities of the displacement returned */
+            for (long i = 0; i < n; i++) s->v[i] = v0[i] + s->dvdu * (st < 0 ? 0.0 : u[i] - u0[i]);
+    }
+    free(mark);
+    free(cand);
+    free(u0);
+    free(v0);
+    return st;
+}

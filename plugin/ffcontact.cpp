@@ -614,6 +614,7 @@ struct SceneData {
     long nn = 0;            // nodes: vertices or P2 nodes
     std::vector<std::string> labels; // per pair: "slave {..} / master {..}"
     std::vector<std::vector<long>> tetS, tetM; // per pair: the tetrahedron behind each slave / master facet
+    ffc_newton_info newton{};  // the last ffcNewton
     ~SceneData() { ffc_scene_free(s); }
 };
 
@@ -1343,6 +1344,67 @@ long sceneSolve(const Named &, FFScene *const &C, Matrice_Creuse<double> *const 
     return 0;
 }
 
+// ffcNewton(C, r, u, hist, tol = , rtol = 0, maxIter = 25, maxLineSearch = 8,
+// lsTol = 0.5, tangent = "consistent", [v, dt, dvdu]): Newton on the condensed contact
+// problem (ffc_scene_newton) from u with its residual r, u updated in
+// place (converged when |rho| <= max(tol, rtol x the contact force));
+// hist = |rho| at each iteration. Returns 0 converged, 1 iteration
+// limit, 2 no descent direction, 3 not factorizable (singular), 4 more
+// contact dofs than maxContactDofs; u is kept on 3 and 4.
+basicAC_F0::name_and_type newton_names[] = {{"tol", &typeid(double)},       {"maxIter", &typeid(long)},
+                                            {"maxLineSearch", &typeid(long)}, {"lsTol", &typeid(double)},
+                                            {"tangent", &typeid(string *)},  {"v", &typeid(KN<double> *)},
+                                            {"dt", &typeid(double)},         {"dvdu", &typeid(double)},
+                                            {"rtol", &typeid(double)}};
+
+long sceneNewton(const Named &nm, FFScene *const &C, KN<double> *const &r, KN<double> *const &u,
+                 KN<double> *const &hist)
+{
+    const char *fn = "ffcNewton";
+    SceneData &d = need_scene(fn, C);
+    const long n = 3 * d.nn;
+    const double *pr = need_scene_u(fn, d, r, "r");
+    const double *pu = need_scene_u(fn, d, u);
+    if (!hist) fail(fn, "argument 'hist': array is not defined");
+    need_not_inverted(fn, d, pu);
+    need_penalties(fn, d);
+    ffc_newton_opts o = ffc_newton_defaults();
+    if (!nm.has(0)) fail(fn, "argument 'tol': missing (the force tolerance of the residual, > 0)");
+    o.ftol = nm.real(0, 0);
+    if (!(o.ftol > 0) || std::isinf(o.ftol)) fail(fn, "argument 'tol': " + num(o.ftol) + " must be finite and > 0");
+    const long mi = nm.integer(1, 25), ml = nm.integer(2, 8);
+    if (mi < 1 || mi > 100000) fail(fn, "argument 'maxIter': " + std::to_string(mi) + " must be in 1..100000");
+    if (ml < 0 || ml > 1000) fail(fn, "argument 'maxLineSearch': " + std::to_string(ml) + " must be in 0..1000");
+    o.max_iter = (int)mi;
+    o.max_ls = (int)ml;
+    o.ls_tol = nm.real(3, 0.5);
+    if (!(o.ls_tol > 0 && o.ls_tol < 1)) fail(fn, "argument 'lsTol': " + num(o.ls_tol) + " must be in (0, 1)");
+    o.frel = nm.real(8, 0);
+    if (!(o.frel >= 0) || std::isinf(o.frel)) fail(fn, "argument 'rtol': " + num(o.frel) + " must be finite and >= 0");
+    const std::string t = nm.str(4, "consistent");
+    if (t == "consistent") o.tangent = FFC_TANGENT_CONSISTENT;
+    else if (t == "material") o.tangent = FFC_TANGENT_MATERIAL;
+    else fail(fn, "argument 'tangent': \"" + t + "\" is not \"consistent\" or \"material\"");
+    for (int k = 0; k < ffc_scene_npairs(d.s); k++) {
+        ffc_pair_opts po;
+        ffc_scene_pair_opts(d.s, k, &po);
+        if (po.method == FFC_METHOD_NTS)
+            fail(fn, "argument 'C': pair " + std::to_string(k) + " is node-to-surface; the condensed Newton takes augmented Lagrangian pairs");
+    }
+    scene_motion(fn, nm, d, 5, 6, 7);
+    std::vector<double> uv(pu, pu + n);
+    long bad = -1;
+    int st = ffc_scene_newton(d.s, pr, uv.data(), &o, &d.newton, &bad);
+    if (st == FFC_ERR_EMPTY) fail(fn, "argument 'C': no bulk matrix yet (ffcBulk(C, K) first)");
+    if (st == FFC_ERR_SINGULAR) return 3;
+    if (st == FFC_ERR_CAPACITY) return 4;
+    if (st < 0) scene_error(fn, st, bad, "the condensed Newton");
+    for (long i = 0; i < n; i++) (*u)[i] = uv[i];
+    hist->resize(d.newton.nhist);
+    for (int i = 0; i < d.newton.nhist; i++) (*hist)[i] = d.newton.hist[i];
+    return st == FFC_OK ? 0 : st == FFC_INFO_MAXIT ? 1 : 2;
+}
+
 // ffcSolverStat(C, name): a counter of the bulk solves (see ffc_solve_info).
 double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
 {
@@ -1360,7 +1422,12 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "shift") return in.shift;
     if (k == "rcond") return in.rcond;
     if (k == "residual") return in.residual;
-    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, contactDofs, shift, rcond, residual");
+    if (k == "newtonIterations") return d.newton.iters;
+    if (k == "evaluations") return d.newton.evals;
+    if (k == "fallbacks") return d.newton.fallbacks;
+    if (k == "condensedDofs") return d.newton.m;
+    if (k == "support") return d.newton.support;
+    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, contactDofs, shift, rcond, residual, newtonIterations, evaluations, fallbacks, condensedDofs, support");
     return 0;
 }
 
@@ -1468,6 +1535,7 @@ void init_scene()
     typedef Matrice_Creuse<double> *M;
     Global.Add("ffcBulk", "(", named<long, S, M>("ffcBulk", bulk_names, 1, sceneBulk));
     Global.Add("ffcSolve", "(", named<long, S, M, V, V>("ffcSolve", nullptr, 0, sceneSolve));
+    Global.Add("ffcNewton", "(", named<long, S, V, V, V>("ffcNewton", newton_names, 9, sceneNewton));
     Global.Add("ffcSolverStat", "(", named<double, S, string *>("ffcSolverStat", nullptr, 0, sceneSolverStat));
     Global.Add("ffcNTSStep", "(", named<long, S>("ffcNTSStep", nullptr, 0, sceneNtsStep));
     Global.Add("ffcRows", "(", named<long, S, V, V, M, M, M, V>("ffcRows", nullptr, 0, sceneRows));
