@@ -73,10 +73,12 @@ $(B)/meshes/%.msh: meshes/%.geo
 $(B)/bench_search: tests/bench/bench_search.c $(B)/libffc.a
 	$(CC) $(CFLAGS) $< $(B)/libffc.a $(CLIBS) -o $@
 
-.PHONY: bench bench-search
+.PHONY: bench bench-search bench-contact
 bench-search: $(B)/bench_search
 	@sh tests/bench/bench_search.sh
-bench: bench-search
+bench-contact: all
+	@sh tests/bench/bench_contact.sh $(MODE)
+bench: bench-search bench-contact
 
 # sanitizers and fuzzing (clang from Debian)
 ASAN := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all

@@ -38,11 +38,13 @@ struct ffc__bulk {
     long mmax;                 /* contact dofs this path takes at most */
     ffc_solve_info info;
     /* the condensed Newton (ffc__bulk_newton) */
-    double *Gc;                /* [ld*ld] Cholesky factor of G (m x m, leading dimension m) */
-    long mc;                   /* the m of Gc (-1: none) */
+    double *Gc;                /* [ld*ld] Cholesky factor L of G (lower, leading dimension ld) */
+    long mc;                   /* the dofs Gc covers (its first mc rows and columns) */
     long *ti, *tj;             /* [tcap] contact tangent triplets */
     double *tv;                /* [tcap] */
     long tcap;
+    double *Mw, *Gw;           /* [wcap] the dense tangent and G on its support (a x a) */
+    long wcap;
 };
 
 static void bulk_free_factor(ffc__bulk *b)
@@ -63,7 +65,7 @@ void ffc__bulk_free(ffc__bulk *b)
     free(b->Ti); free(b->Tj); free(b->Tv); free(b->diag); free(b->big); free(b->sh);
     free(b->dof); free(b->G); free(b->pos); free(b->nd); free(b->A); free(b->piv);
     free(b->xc); free(b->w); free(b->r); free(b->dx); free(b->t); free(b->kv);
-    free(b->Gc); free(b->ti); free(b->tj); free(b->tv);
+    free(b->Gc); free(b->ti); free(b->tj); free(b->tv); free(b->Mw); free(b->Gw);
     free(b);
 }
 
@@ -103,7 +105,6 @@ int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const do
     b->n = n;
     b->nt = nt;
     b->mmax = mmax;
-    b->mc = -1;
     const size_t nn = (size_t)n, nz = (size_t)(nt > 0 ? nt : 1);
     b->Ti = malloc(nz * sizeof(long));
     b->Tj = malloc(nz * sizeof(long));
@@ -180,9 +181,9 @@ static int grow(ffc__bulk *b, long m)
         free(G); free(A); free(dof); free(piv); free(xc); free(Gc);
         return FFC_ERR_MEMORY;
     }
+    for (long c = 0; c < b->mc; c++) memcpy(Gc + c * ld, b->Gc + c * b->ld, (size_t)b->mc * sizeof(double));
     free(b->Gc);
     b->Gc = Gc;
-    b->mc = -1;
     for (long c = 0; c < b->m; c++) {
         memcpy(G + c * ld, b->G + c * b->ld, (size_t)b->m * sizeof(double));
         dof[c] = b->dof[c];
@@ -427,6 +428,10 @@ double ffc__bulk_kfree(const ffc__bulk *b) { return b ? b->kfree : 0.0; }
 
 /* ------------------------------------------------- the condensed Newton */
 
+void dtrsm_(const char *side, const char *uplo, const char *ta, const char *diag, const int *m, const int *n,
+            const double *alpha, const double *a, const int *lda, double *b, const int *ldb);
+void dsyrk_(const char *uplo, const char *trans, const int *n, const int *k, const double *alpha, const double *a,
+            const int *lda, const double *beta, double *c, const int *ldc);
 void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info);
 void dpotrs_(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda, double *b,
              const int *ldb, int *info);
@@ -464,16 +469,30 @@ static int ensure_columns(ffc__bulk *b, long nc, const long cand[], long *bad)
     return FFC_OK;
 }
 
-/* Gc = the Cholesky factor of G (once per set of columns) */
+/* Gc = the Cholesky factor L of G, extended to the columns added since
+ * the last call: with G = [G11 G12; G21 G22] and L11 known,
+ * L21 = (L11^-1 G12)^T and L22 = chol(G22 - L21 L21^T), O(mc^2 k) for k
+ * new columns (a factorization from scratch would take m^3 / 3 at every
+ * growth of C) */
 static int factor_g(ffc__bulk *b)
 {
-    const long m = b->m;
-    if (b->mc == m) return FFC_OK;
-    if (m > 2147483647L / (m ? m : 1)) return FFC_ERR_SIZE;
-    for (long j = 0; j < m; j++) memcpy(b->Gc + j * m, b->G + j * b->ld, (size_t)m * sizeof(double));
-    const int mi = (int)m;
+    const long m = b->m, mc = b->mc, k = m - mc, ld = b->ld;
+    if (k == 0) return FFC_OK;
+    if (ld > 2147483647L) return FFC_ERR_SIZE;
+    const int mci = (int)mc, ki = (int)k, ldi = (int)ld;
+    const double one = 1.0, mone = -1.0;
+    double *L = b->Gc;
+    /* the new columns' rows: G12 into L's upper block, then solved and
+     * moved below the diagonal */
+    for (long j = mc; j < m; j++) memcpy(L + j * ld, b->G + j * ld, (size_t)m * sizeof(double));
+    if (mc > 0) {
+        dtrsm_("L", "L", "N", "N", &mci, &ki, &one, L, &ldi, L + mc * ld, &ldi); /* L11^-1 G12 */
+        for (long j = mc; j < m; j++)
+            for (long i = 0; i < mc; i++) L[j + i * ld] = L[i + j * ld];  /* L21 = (L11^-1 G12)^T */
+        dsyrk_("L", "N", &ki, &mci, &mone, L + mc, &ldi, &one, L + mc + mc * ld, &ldi); /* G22 - L21 L21^T */
+    }
     int info = 0;
-    if (m) dpotrf_("L", &mi, b->Gc, &mi, &info);
+    dpotrf_("L", &ki, L + mc + mc * ld, &ldi, &info);
     if (info) return FFC_ERR_SINGULAR;
     b->mc = m;
     return FFC_OK;
@@ -482,9 +501,9 @@ static int factor_g(ffc__bulk *b)
 /* x = G^-1 x (m) */
 static void g_inverse(const ffc__bulk *b, double x[])
 {
-    const int mi = (int)b->m, one = 1;
+    const int mi = (int)b->m, one = 1, ldi = (int)b->ld;
     int info = 0;
-    if (mi) dpotrs_("L", &mi, &one, b->Gc, &mi, x, &mi, &info);
+    if (mi) dpotrs_("L", &mi, &one, b->Gc, &ldi, x, &mi, &info);
 }
 
 /* the contact force F (into b->r) and, with a tangent, its triplets
@@ -534,10 +553,9 @@ static int force_c(const ffc__bulk *b, const double y[], double Fp[], long *bad)
  * q = G rho, t + G_aa M t = -q_a (dense LU, b->A), dy = -q - G_Ca M t;
  * and the change of the reaction z = G^-1 (y - d0_C) it makes, by the
  * Newton equation G^-1 dy = -rho - Kc' dy: dz = -rho - E_a M dy_a.
- * M, Gaa [m*m] work (a x a used), ap[m], ad[m], q[m], t[m], s[m] work; *na
- * the support's size. */
-static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], double dz[], double M[], double Gaa[],
-                     long ap[], long ad[], double q[], double t[], double s[], long *na, long *bad)
+ * ap[m], ad[m], q[m], t[m], s[m] work; *na the support's size. */
+static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], double dz[], long ap[], long ad[],
+                     double q[], double t[], double s[], long *na, long *bad)
 {
     const long m = b->m, ld = b->ld;
     for (long k = 0; k < m; k++) b->pos[b->dof[k]] = k;
@@ -559,6 +577,14 @@ static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], dou
     *na = a;
     const int mi = (int)m, ldi = (int)ld, one = 1, ai = (int)a;
     const double d1 = 1.0, d0 = 0.0;
+    if (!st && a * a > b->wcap) { /* the dense work of the support, grown as needed */
+        double *Mw = realloc(b->Mw, (size_t)(a * a) * sizeof(double));
+        if (Mw) b->Mw = Mw;
+        double *Gw = Mw ? realloc(b->Gw, (size_t)(a * a) * sizeof(double)) : NULL;
+        if (Gw) { b->Gw = Gw; b->wcap = a * a; }
+        else st = FFC_ERR_MEMORY;
+    }
+    double *M = b->Mw, *Gaa = b->Gw;
     if (!st && m > 0) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, rho, &one, &d0, q, &one); /* q = G rho */
     if (!st && a > 0) {
         /* M = Kc' on the support (dense, a x a), G_aa */
@@ -651,10 +677,9 @@ int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn f
      * and z never drift apart), rho, dy, dz, gdz = G dz, Fp, rt, q, t, s;
      * ap, ad */
     const size_t mm = (size_t)(m > 0 ? m : 1);
-    double *buf = malloc(12 * mm * sizeof(double)), *M = malloc(mm * mm * sizeof(double)),
-           *Gaa = malloc(mm * mm * sizeof(double));
+    double *buf = malloc(12 * mm * sizeof(double));
     long *ibuf = malloc(2 * mm * sizeof(long));
-    if (!buf || !ibuf || !M || !Gaa) { free(buf); free(ibuf); free(M); free(Gaa); return FFC_ERR_MEMORY; }
+    if (!buf || !ibuf) { free(buf); free(ibuf); return FFC_ERR_MEMORY; }
     double *y = buf, *z = y + mm, *rho = z + mm, *dy = rho + mm, *dz = dy + mm, *gdz = dz + mm, *Fp = gdz + mm,
            *rt = Fp + mm, *q = rt + mm, *tt = q + mm, *ss = tt + mm, *d0c = ss + mm;
     long *ap = ibuf, *ad = ibuf + mm;
@@ -718,7 +743,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn f
         if (rn <= tol || ((last <= 1e-14 || stall >= 2) && rn <= 1e3 * tol)) { status = FFC_OK; break; }
         if (it == o->max_iter) break;
         long na = 0;
-        st = direction(b, nt, rho, dy, dz, M, Gaa, ap, ad, q, tt, ss, &na, bad);
+        st = direction(b, nt, rho, dy, dz, ap, ad, q, tt, ss, &na, bad);
         if (st) break;
         if (na > info->support) info->support = na;
         /* the step of y that the step of z makes: G dz (= dy to the accuracy
@@ -729,7 +754,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn f
             /* the consistent tangent is indefinite here: the material one's direction */
             st = contact_eval(b, fn, ctx, w, FFC_TANGENT_MATERIAL, &nt, &fm, bad);
             info->evals++;
-            if (!st) st = direction(b, nt, rho, dy, dz, M, Gaa, ap, ad, q, tt, ss, &na, bad);
+            if (!st) st = direction(b, nt, rho, dy, dz, ap, ad, q, tt, ss, &na, bad);
             if (st) break;
             if (na > info->support) info->support = na;
             info->fallbacks++;
@@ -809,8 +834,6 @@ int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn f
     }
     free(buf);
     free(ibuf);
-    free(M);
-    free(Gaa);
     b->info.solves++;
     return st ? st : status;
 }

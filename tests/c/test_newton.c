@@ -1,0 +1,379 @@
+/* test_newton.c: the condensed Newton (ffc_scene_newton) against Newton on
+ * the full system with dense solves, frictionless and with friction
+ * (stick and slip), a body held only by contact, its convergence order,
+ * and bad input. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "ffc_test.h"
+
+/* A slave unit square (nodes 0-3, two facets facing down) penetrating by
+ * D a master unit square (nodes 4-7, facing up) at z = 0; a third square
+ * (nodes 8-11) off the contact, springs tying it to the master.  The bulk:
+ * each node on a ground spring KG (dofs of the slave square: KGS, 0 for a
+ * body held only by contact), springs KS between the nodes of each square,
+ * and the master's node 4 x-dof a Dirichlet row (TGV, value 0). */
+#define NV 12
+#define N (3 * NV)
+static const double D = 2e-3, EPS = 2e3, KG = 100.0, KS = 300.0, TGV = 1e30;
+
+static void square(double z, double X[], long base)
+{
+    const double c[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int a = 0; a < 4; a++) {
+        X[3 * (base + a)] = c[a][0];
+        X[3 * (base + a) + 1] = c[a][1];
+        X[3 * (base + a) + 2] = z;
+    }
+}
+
+static double XSHIFT = 0.0; /* the slave square's offset along x */
+
+static ffc_scene *make(double mu, double kgs, long *nt, long Ti[], long Tj[], double Tv[], double Kd[N * N])
+{
+    double X[3 * NV];
+    square(-D, X, 0);
+    for (int a = 0; a < 4; a++) X[3 * a] += XSHIFT;
+    square(0.0, X, 4);
+    square(-1.0, X, 8);
+    const long Fs[6] = {0, 2, 1, 0, 3, 2}, Fm[6] = {4, 5, 6, 4, 6, 7};
+    ffc_effects fx = {mu > 0, 0, 0};
+    ffc_scene *s = NULL;
+    long bad = -1;
+    assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_OK);
+    ffc_pair_opts o = ffc_pair_defaults();
+    o.eps_n = EPS;
+    o.eps_t = EPS;
+    o.mu = mu;
+    o.qdeg = 2;
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fs, 2, Fm, &o, &bad), 0);
+    long t = 0;
+    for (int i = 0; i < NV; i++)
+        for (int c = 0; c < 3; c++) {
+            const long d = 3 * i + c;
+            Ti[t] = Tj[t] = d;
+            Tv[t++] = (i < 4 ? kgs : KG) * (1.0 + 0.05 * d) + (d == 12 ? TGV : 0.0);
+        }
+    for (int sq = 0; sq < 3; sq++)
+        for (int a = 0; a < 4; a++)
+            for (int b = a + 1; b < 4; b++)
+                for (int c = 0; c < 3; c++) {
+                    const long i = 3 * (4 * sq + a) + c, j = 3 * (4 * sq + b) + c;
+                    const long p[4][2] = {{i, i}, {j, j}, {i, j}, {j, i}};
+                    const double v[4] = {KS, KS, -KS, -KS};
+                    for (int e = 0; e < 4; e++) { Ti[t] = p[e][0]; Tj[t] = p[e][1]; Tv[t++] = v[e]; }
+                }
+    for (int a = 0; a < 4; a++) /* master and third square tied, z springs */
+        for (int c = 0; c < 3; c++) {
+            const long i = 3 * (4 + a) + c, j = 3 * (8 + a) + c;
+            const long p[4][2] = {{i, i}, {j, j}, {i, j}, {j, i}};
+            const double v[4] = {KS, KS, -KS, -KS};
+            for (int e = 0; e < 4; e++) { Ti[t] = p[e][0]; Tj[t] = p[e][1]; Tv[t++] = v[e]; }
+        }
+    *nt = t;
+    memset(Kd, 0, sizeof(double) * N * N);
+    for (long k = 0; k < t; k++) Kd[Ti[k] * N + Tj[k]] += Tv[k];
+    assert_int_equal(ffc_scene_set_bulk(s, N, t, Ti, Tj, Tv, 1000, &bad), FFC_OK);
+    long linked = 0;
+    double u0[N] = {0};
+    assert_int_equal(ffc_scene_search(s, u0, &linked, &bad), FFC_OK);
+    assert_true(linked > 0);
+    return s;
+}
+
+/* the loads: the slave square pulled along x by fx per node (a tangential
+ * load for the friction cases) and pressed along -z by pz per node */
+static void loads(double fx, double pz, double f[N])
+{
+    memset(f, 0, sizeof(double) * N);
+    for (int a = 0; a < 4; a++) {
+        f[3 * a] = fx;
+        f[3 * a + 2] = -pz;
+    }
+}
+
+/* r(u) = K u - f + F_c(u) on the free rows, TGV (u - 0) on the Dirichlet
+ * row (dof 12); with Kc into Kt = K + Kc when Kt is given */
+static void residual(ffc_scene *s, const double Kd[N * N], const double f[N], const double u[N], double r[N],
+                     double Kt[N * N])
+{
+    enum { CAP = 1 << 16 };
+    static long ci[CAP], cj[CAP];
+    static double cv[CAP];
+    double R[N] = {0};
+    long nt = 0, bad = -1;
+    assert_int_equal(ffc_scene_assemble(s, u, Kt ? FFC_TANGENT_CONSISTENT : FFC_TANGENT_NONE, R, CAP, ci, cj, cv,
+                                        &nt, &bad),
+                     FFC_OK);
+    for (int i = 0; i < N; i++) {
+        double k = -f[i];
+        for (int j = 0; j < N; j++) k += Kd[i * N + j] * u[j];
+        r[i] = i == 12 ? k : k + R[i];
+    }
+    if (Kt) {
+        memcpy(Kt, Kd, sizeof(double) * N * N);
+        for (long e = 0; e < nt; e++)
+            if (ci[e] != 12) Kt[ci[e] * N + cj[e]] += cv[e];
+    }
+}
+
+/* x = A^-1 b, Gaussian elimination with partial pivoting (A, b destroyed) */
+static void dense_solve(double A[N * N], double b[N], double x[N])
+{
+    for (int k = 0; k < N; k++) {
+        int p = k;
+        for (int i = k + 1; i < N; i++)
+            if (fabs(A[i * N + k]) > fabs(A[p * N + k])) p = i;
+        for (int j = 0; j < N; j++) { const double t = A[k * N + j]; A[k * N + j] = A[p * N + j]; A[p * N + j] = t; }
+        const double t = b[k]; b[k] = b[p]; b[p] = t;
+        for (int i = k + 1; i < N; i++) {
+            const double q = A[i * N + k] / A[k * N + k];
+            for (int j = k; j < N; j++) A[i * N + j] -= q * A[k * N + j];
+            b[i] -= q * b[k];
+        }
+    }
+    for (int i = N - 1; i >= 0; i--) {
+        double v = b[i];
+        for (int j = i + 1; j < N; j++) v -= A[i * N + j] * x[j];
+        x[i] = v / A[i * N + i];
+    }
+}
+
+static double free_norm(const double r[N])
+{
+    double v = 0.0;
+    for (int i = 0; i < N; i++)
+        if (i != 12) v += r[i] * r[i];
+    return sqrt(v);
+}
+
+/* Newton on the full system (dense), to |r| <= 1e-13 x the contact force */
+static void full_newton(ffc_scene *s, const double Kd[N * N], const double f[N], double u[N])
+{
+    double r[N], Kt[N * N], dx[N];
+    for (int it = 0; it < 60; it++) {
+        residual(s, Kd, f, u, r, Kt);
+        double fz = 0.0;
+        assert_int_equal(ffc_scene_stat(s, -1, "Fz", 0, &fz), FFC_OK);
+        if (free_norm(r) <= 1e-13 * fabs(fz) && it > 0) return;
+        for (int i = 0; i < N; i++) r[i] = -r[i];
+        dense_solve(Kt, r, dx);
+        for (int i = 0; i < N; i++) u[i] += dx[i];
+    }
+    fail_msg("the full Newton did not converge");
+}
+
+/* The condensed Newton from u = 0 against the full one: the same
+ * displacement to 1e-10 of its largest entry (both converge to 1e-12 of
+ * the contact force on a system of condition ~1e3), the converged
+ * residual below its tolerance, one factorization. */
+static void check_case(double mu, double fx, double pz, double kgs, const char *regime)
+{
+    long Ti[1024], Tj[1024], nt = 0, bad = -1;
+    double Tv[1024], Kd[N * N], f[N], uf[N] = {0}, uc[N] = {0}, r[N];
+    ffc_scene *s = make(mu, kgs, &nt, Ti, Tj, Tv, Kd);
+    loads(fx, pz, f);
+    full_newton(s, Kd, f, uf);
+    double fz = 0.0;
+    ffc_scene_stat(s, -1, "Fz", 0, &fz);
+    assert_true(fabs(fz) > 0.1);
+    double stick = 0, slip = 0;
+    ffc_scene_stat(s, -1, "stick", 0, &stick);
+    ffc_scene_stat(s, -1, "slip", 0, &slip);
+    if (!strcmp(regime, "stick")) assert_true(stick > 0 && slip == 0);
+    if (!strcmp(regime, "slip")) assert_true(slip > 0 && stick == 0);
+    residual(s, Kd, f, uc, r, NULL);
+    ffc_newton_opts o = ffc_newton_defaults();
+    o.ftol = 1e-12 * fabs(fz);
+    ffc_newton_info in;
+    assert_int_equal(ffc_scene_newton(s, r, uc, &o, &in, &bad), FFC_OK);
+    double umax = 0;
+    for (int i = 0; i < N; i++) umax = fmax(umax, fabs(uf[i]));
+    for (int i = 0; i < N; i++) assert_close(uc[i], uf[i], 1e-10 * umax);
+    residual(s, Kd, f, uc, r, NULL);
+    assert_true(free_norm(r) <= 2 * o.ftol);
+    assert_true(in.res <= o.ftol);
+    assert_true(in.iters >= 1 && in.nhist == in.iters + 1);
+    ffc_solve_info si;
+    ffc_scene_solve_info(s, &si);
+    assert_int_equal(si.factorizations, 1);
+    if (kgs == 0) assert_true(si.shift > 0);
+    else assert_true(si.shift == 0);
+    ffc_scene_free(s);
+}
+
+static void test_frictionless(void **state)
+{
+    (void)state;
+    check_case(0.0, 0.0, 0.0, KG, "");
+}
+
+static void test_stick(void **state)
+{
+    (void)state;
+    check_case(0.5, 0.02, 0.0, KG, "stick");
+}
+
+static void test_slip(void **state)
+{
+    (void)state;
+    check_case(0.3, 3.0, 0.0, KG, "slip");
+}
+
+/* the slave square has no ground springs: K is singular, the shift holds
+ * it (and sticking friction holds it along the contact plane) */
+static void test_held_by_contact(void **state)
+{
+    (void)state;
+    check_case(0.5, 0.02, 0.2, 0.0, "stick");
+}
+
+/* Quadratic convergence (the slip case: 6.7, 5.7, 5.2e-5, 8.2e-13,
+ * 2.8e-16, the same residuals as the full Newton): once the residual is
+ * below 1e-2 of the first, each iteration squares its relative size
+ * (r_{k+1} / r_0 <= 10 (r_k / r_0)^2) until round-off (1e-13); a linearly
+ * converging iteration would gain a fixed factor instead. */
+static void test_quadratic(void **state)
+{
+    (void)state;
+    long Ti[1024], Tj[1024], nt = 0, bad = -1;
+    double Tv[1024], Kd[N * N], f[N], u[N] = {0}, r[N];
+    ffc_scene *s = make(0.3, KG, &nt, Ti, Tj, Tv, Kd);
+    loads(3.0, 0.0, f);
+    residual(s, Kd, f, u, r, NULL);
+    ffc_newton_opts o = ffc_newton_defaults();
+    o.ftol = 1e-300;
+    o.frel = 1e-15;
+    ffc_newton_info in;
+    int st = ffc_scene_newton(s, r, u, &o, &in, &bad);
+    assert_true(st == FFC_OK || st == FFC_INFO_MAXIT);
+    int checked = 0;
+    for (int k = 0; k + 1 < in.nhist; k++) {
+        const double e = in.hist[k] / in.hist[0], e1 = in.hist[k + 1] / in.hist[0];
+        if (e > 1e-2 || e < 1e-13 || e1 < 1e-13) continue;
+        assert_true(e1 <= 10 * e * e);
+        checked++;
+    }
+    assert_true(checked >= 1);
+    assert_true(in.hist[in.nhist - 1] <= 1e-13 * in.hist[0]);
+    ffc_scene_free(s);
+}
+
+/* The contact dofs grow between two calls (the compliance gains columns
+ * and its Cholesky factor is extended): the slave square first overhangs
+ * the master by 0.8 (its points beyond x = 1 unlinked), then is moved back
+ * over it and searched again; each call matches the full Newton from the
+ * same state. */
+static void test_growth(void **state)
+{
+    (void)state;
+    long Ti[1024], Tj[1024], nt = 0, bad = -1;
+    double Tv[1024], Kd[N * N], f[N], uf[N] = {0}, uc[N] = {0}, r[N];
+    XSHIFT = 0.8;
+    ffc_scene *s = make(0.0, KG, &nt, Ti, Tj, Tv, Kd);
+    XSHIFT = 0.0;
+    loads(0.0, 0.0, f);
+    ffc_newton_opts o = ffc_newton_defaults();
+    o.ftol = 1e-12;
+    ffc_newton_info in;
+    long m[2];
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 1) { /* back over the master: every point linked */
+            for (int a = 0; a < 4; a++) uf[3 * a] = uc[3 * a] = -0.8;
+            long linked = 0;
+            assert_int_equal(ffc_scene_search(s, uc, &linked, &bad), FFC_OK);
+            for (int i = 0; i < N; i++) uf[i] = uc[i];
+        }
+        full_newton(s, Kd, f, uf);
+        residual(s, Kd, f, uc, r, NULL);
+        assert_int_equal(ffc_scene_newton(s, r, uc, &o, &in, &bad), FFC_OK);
+        double umax = 0;
+        for (int i = 0; i < N; i++) umax = fmax(umax, fabs(uf[i]));
+        for (int i = 0; i < N; i++) assert_close(uc[i], uf[i], 1e-10 * umax);
+        m[pass] = in.m;
+    }
+    assert_true(m[1] > m[0]);
+    ffc_scene_free(s);
+}
+
+static void test_bad_input(void **state)
+{
+    (void)state;
+    long Ti[1024], Tj[1024], nt = 0, bad = -1;
+    double Tv[1024], Kd[N * N], f[N], u[N] = {0}, r[N];
+    ffc_scene *s = make(0.0, KG, &nt, Ti, Tj, Tv, Kd);
+    loads(0.0, 0.0, f);
+    residual(s, Kd, f, u, r, NULL);
+    ffc_newton_opts o = ffc_newton_defaults();
+    ffc_newton_info in;
+    assert_int_equal(ffc_scene_newton(s, r, u, &o, &in, &bad), FFC_ERR_VALUE); /* ftol not set */
+    o.ftol = 1e-9;
+    assert_int_equal(ffc_scene_newton(NULL, r, u, &o, &in, &bad), FFC_ERR_NULL);
+    assert_int_equal(ffc_scene_newton(s, NULL, u, &o, &in, &bad), FFC_ERR_NULL);
+    o.ls_tol = 1.0;
+    assert_int_equal(ffc_scene_newton(s, r, u, &o, &in, &bad), FFC_ERR_VALUE);
+    o.ls_tol = 0.5;
+    o.max_iter = 0;
+    assert_int_equal(ffc_scene_newton(s, r, u, &o, &in, &bad), FFC_ERR_VALUE);
+    o.max_iter = 25;
+    o.tangent = FFC_TANGENT_NONE;
+    assert_int_equal(ffc_scene_newton(s, r, u, &o, &in, &bad), FFC_ERR_VALUE);
+    o.tangent = FFC_TANGENT_CONSISTENT;
+    double rn[N];
+    memcpy(rn, r, sizeof rn);
+    rn[7] = NAN;
+    assert_int_equal(ffc_scene_newton(s, rn, u, &o, &in, &bad), FFC_ERR_NONFINITE);
+    assert_int_equal(bad, 7);
+    for (int i = 0; i < N; i++) assert_true(u[i] == 0.0); /* u kept */
+    /* more contact dofs than the bulk takes */
+    assert_int_equal(ffc_scene_set_bulk(s, N, nt, Ti, Tj, Tv, 5, &bad), FFC_OK);
+    assert_int_equal(ffc_scene_newton(s, r, u, &o, &in, &bad), FFC_ERR_CAPACITY);
+    assert_true(bad > 5);
+    for (int i = 0; i < N; i++) assert_true(u[i] == 0.0);
+    ffc_scene_free(s);
+    /* no bulk matrix */
+    double X[3 * NV] = {0};
+    ffc_effects fx = {0, 0, 0};
+    assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_OK);
+    assert_int_equal(ffc_scene_newton(s, r, u, &o, &in, &bad), FFC_ERR_EMPTY);
+    ffc_scene_free(s);
+}
+
+/* A bulk that is not positive definite (a negative ground spring on a
+ * contact dof) is refused with FFC_ERR_SINGULAR, u kept. */
+static void test_not_positive_definite(void **state)
+{
+    (void)state;
+    long Ti[1024], Tj[1024], nt = 0, bad = -1;
+    double Tv[1024], Kd[N * N], f[N], u[N] = {0}, r[N];
+    ffc_scene *s = make(0.0, KG, &nt, Ti, Tj, Tv, Kd);
+    Ti[nt] = Tj[nt] = 2;        /* the z dof of slave node 0: an indefinite K */
+    Tv[nt] = -1e4;
+    Kd[2 * N + 2] += -1e4;
+    assert_int_equal(ffc_scene_set_bulk(s, N, nt + 1, Ti, Tj, Tv, 1000, &bad), FFC_ERR_SINGULAR);
+    /* positive diagonal but indefinite: two springs of opposite sign */
+    Tv[nt] = 1.0;
+    Ti[nt + 1] = 2; Tj[nt + 1] = 5; Tv[nt + 1] = 1e5;
+    Ti[nt + 2] = 5; Tj[nt + 2] = 2; Tv[nt + 2] = 1e5;
+    assert_int_equal(ffc_scene_set_bulk(s, N, nt + 3, Ti, Tj, Tv, 1000, &bad), FFC_OK);
+    loads(0.0, 0.0, f);
+    residual(s, Kd, f, u, r, NULL);
+    ffc_newton_opts o = ffc_newton_defaults();
+    o.ftol = 1e-9;
+    ffc_newton_info in;
+    assert_int_equal(ffc_scene_newton(s, r, u, &o, &in, &bad), FFC_ERR_SINGULAR);
+    for (int i = 0; i < N; i++) assert_true(u[i] == 0.0);
+    ffc_scene_free(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_frictionless),   cmocka_unit_test(test_stick),
+        cmocka_unit_test(test_slip),           cmocka_unit_test(test_held_by_contact),
+        cmocka_unit_test(test_quadratic),      cmocka_unit_test(test_growth),
+        cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_not_positive_definite),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
