@@ -747,6 +747,7 @@ typedef struct {
     double frel;       /* relative tolerance (1), >= 0; the scale is the largest
                           |Fx| + |Fy| + |Fz| of the total normal contact force met */
     int tangent;       /* FFC_TANGENT_CONSISTENT or FFC_TANGENT_MATERIAL */
+    long max_dofs;     /* contact dofs C may hold (count), >= 0; 0: the bulk's mmax */
 } ffc_newton_opts;
 
 typedef struct {
@@ -761,7 +762,7 @@ typedef struct {
 } ffc_newton_info;
 
 /* Defaults: max_iter 25, max_ls 8, ls_tol 0.5, ftol 0 (must be set),
- * frel 0, consistent tangent. */
+ * frel 0, consistent tangent, max_dofs 0. */
 ffc_newton_opts ffc_newton_defaults(void);
 
 /* Runs the condensed Newton from u[n] (n = 3 nv) with its residual r[n]
@@ -770,8 +771,9 @@ ffc_newton_opts ffc_newton_defaults(void);
  * displacement on FFC_OK, the last iterate on FFC_INFO_MAXIT and
  * FFC_INFO_NODESCENT, unchanged on an error.  FFC_ERR_EMPTY without a
  * bulk matrix, FFC_ERR_VALUE for a scene with node-to-surface pairs or
- * options out of range, FFC_ERR_CAPACITY when C holds more than the bulk's
- * mmax dofs (*bad = their count), FFC_ERR_SINGULAR when K + S or a
+ * options out of range, FFC_ERR_CAPACITY when C would hold more than
+ * max_dofs (or the bulk's mmax) dofs (*bad = their count; no column is
+ * added), FFC_ERR_SINGULAR when K + S or a
  * condensed system cannot be factorized, FFC_ERR_NONFINITE (*bad = the
  * entry of r or u). */
 int ffc_scene_newton(ffc_scene *s, const double r[], double u[], const ffc_newton_opts *o, ffc_newton_info *info,

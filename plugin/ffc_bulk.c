@@ -446,7 +446,7 @@ void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a, 
 
 /* the dofs cand[nc] that are neither Dirichlet rows nor in G yet, as new
  * compliance columns (the first factorization before) */
-static int ensure_columns(ffc__bulk *b, long nc, const long cand[], long *bad)
+static int ensure_columns(ffc__bulk *b, long nc, const long cand[], long cap, long *bad)
 {
     const long n = b->n;
     for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = k;
@@ -462,7 +462,7 @@ static int ensure_columns(ffc__bulk *b, long nc, const long cand[], long *bad)
     for (long k = 0; k < nnew; k++) b->pos[b->nd[k]] = -1;
     for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = -1;
     if (st) return st;
-    if (b->m + nnew > b->mmax) { *bad = b->m + nnew; return FFC_ERR_CAPACITY; }
+    if (b->m + nnew > cap) { *bad = b->m + nnew; return FFC_ERR_CAPACITY; }
     if (!b->L && (st = factorize_first(b, nnew, b->nd))) return st;
     if (nnew && (st = add_columns(b, nnew, b->nd))) return st;
     b->info.m = b->m;
@@ -662,12 +662,13 @@ int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn f
     memset(info, 0, sizeof *info);
     if (nc < 0) return FFC_ERR_SIZE;
     if (o->max_iter < 1 || o->max_ls < 0 || !(o->ls_tol > 0 && o->ls_tol < 1) || !(o->ftol > 0) ||
-        !isfinite(o->ftol) || !(o->frel >= 0) || !isfinite(o->frel) || (o->tangent != FFC_TANGENT_CONSISTENT && o->tangent != FFC_TANGENT_MATERIAL))
+        !isfinite(o->ftol) || !(o->frel >= 0) || !isfinite(o->frel) || o->max_dofs < 0 || (o->tangent != FFC_TANGENT_CONSISTENT && o->tangent != FFC_TANGENT_MATERIAL))
         return FFC_ERR_VALUE;
     const long n = b->n;
     for (long i = 0; i < n; i++)
         if (!isfinite(r[i]) || !isfinite(u[i])) { *bad = i; return FFC_ERR_NONFINITE; }
-    int st = ensure_columns(b, nc, cand, bad);
+    const long cap = o->max_dofs > 0 && o->max_dofs < b->mmax ? o->max_dofs : b->mmax;
+    int st = ensure_columns(b, nc, cand, cap, bad);
     if (!st) st = factor_g(b);
     if (st) return st;
     const long m = b->m;

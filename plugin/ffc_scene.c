@@ -949,6 +949,7 @@ ffc_newton_opts ffc_newton_defaults(void)
     o.ftol = 0.0;
     o.frel = 0.0;
     o.tangent = FFC_TANGENT_CONSISTENT;
+    o.max_dofs = 0;
     return o;
 }
 

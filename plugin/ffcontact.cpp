@@ -1345,17 +1345,18 @@ long sceneSolve(const Named &, FFScene *const &C, Matrice_Creuse<double> *const 
 }
 
 // ffcNewton(C, r, u, hist, tol = , rtol = 0, maxIter = 25, maxLineSearch = 8,
-// lsTol = 0.5, tangent = "consistent", [v, dt, dvdu]): Newton on the condensed contact
+// lsTol = 0.5, tangent = "consistent", maxDofs = 0, [v, dt, dvdu]): Newton on the condensed contact
 // problem (ffc_scene_newton) from u with its residual r, u updated in
 // place (converged when |rho| <= max(tol, rtol x the contact force));
 // hist = |rho| at each iteration. Returns 0 converged, 1 iteration
 // limit, 2 no descent direction, 3 not factorizable (singular), 4 more
-// contact dofs than maxContactDofs; u is kept on 3 and 4.
+// contact dofs than maxDofs (0: the bulk's maxContactDofs); u is kept on 3
+// and 4.
 basicAC_F0::name_and_type newton_names[] = {{"tol", &typeid(double)},       {"maxIter", &typeid(long)},
                                             {"maxLineSearch", &typeid(long)}, {"lsTol", &typeid(double)},
                                             {"tangent", &typeid(string *)},  {"v", &typeid(KN<double> *)},
                                             {"dt", &typeid(double)},         {"dvdu", &typeid(double)},
-                                            {"rtol", &typeid(double)}};
+                                            {"rtol", &typeid(double)},       {"maxDofs", &typeid(long)}};
 
 long sceneNewton(const Named &nm, FFScene *const &C, KN<double> *const &r, KN<double> *const &u,
                  KN<double> *const &hist)
@@ -1380,6 +1381,8 @@ long sceneNewton(const Named &nm, FFScene *const &C, KN<double> *const &r, KN<do
     o.ls_tol = nm.real(3, 0.5);
     if (!(o.ls_tol > 0 && o.ls_tol < 1)) fail(fn, "argument 'lsTol': " + num(o.ls_tol) + " must be in (0, 1)");
     o.frel = nm.real(8, 0);
+    o.max_dofs = nm.integer(9, 0);
+    if (o.max_dofs < 0) fail(fn, "argument 'maxDofs': " + std::to_string(o.max_dofs) + " must be >= 0 (0: the bulk's maxContactDofs)");
     if (!(o.frel >= 0) || std::isinf(o.frel)) fail(fn, "argument 'rtol': " + num(o.frel) + " must be finite and >= 0");
     const std::string t = nm.str(4, "consistent");
     if (t == "consistent") o.tangent = FFC_TANGENT_CONSISTENT;
@@ -1535,7 +1538,7 @@ void init_scene()
     typedef Matrice_Creuse<double> *M;
     Global.Add("ffcBulk", "(", named<long, S, M>("ffcBulk", bulk_names, 1, sceneBulk));
     Global.Add("ffcSolve", "(", named<long, S, M, V, V>("ffcSolve", nullptr, 0, sceneSolve));
-    Global.Add("ffcNewton", "(", named<long, S, V, V, V>("ffcNewton", newton_names, 9, sceneNewton));
+    Global.Add("ffcNewton", "(", named<long, S, V, V, V>("ffcNewton", newton_names, 10, sceneNewton));
     Global.Add("ffcSolverStat", "(", named<double, S, string *>("ffcSolverStat", nullptr, 0, sceneSolverStat));
     Global.Add("ffcNTSStep", "(", named<long, S>("ffcNTSStep", nullptr, 0, sceneNtsStep));
     Global.Add("ffcRows", "(", named<long, S, V, V, M, M, M, V>("ffcRows", nullptr, 0, sceneRows));

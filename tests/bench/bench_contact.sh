@@ -59,8 +59,8 @@ set grid
 set xlabel 'dofs'
 set ylabel 'seconds (one core)'
 set title 'Contact solves against their floor (bulk assembly + one factorization and solve)'
-plot 'results/bench-contact.csv' every ::1 using ($2 eq "al" ? $4 : 1/0):6 with points pt 7 ps 1.3 title 'augmented Lagrangian', \
-     '' every ::1 using ($2 eq "nts" ? $4 : 1/0):6 with points pt 5 ps 1.3 title 'node-to-surface', \
+plot 'results/bench-contact.csv' every ::1 using (strcol(2) eq "al" ? $4 : 1/0):6 with points pt 7 ps 1.3 title 'augmented Lagrangian', \
+     '' every ::1 using (strcol(2) eq "nts" ? $4 : 1/0):6 with points pt 5 ps 1.3 title 'node-to-surface', \
      '' every ::1 using 4:7 with points pt 2 ps 1.5 lc rgb 'black' title 'floor'
 GP
 echo "wrote $out, results/bench-contact.png"
