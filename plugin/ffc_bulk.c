@@ -8,6 +8,7 @@
 #include <suitesparse/cholmod.h>
 
 #include "ffc_bulk.h"
+#include "ffc_internal.h"
 
 enum { BLOCK = 32 };   /* compliance columns per block back-solve */
 
@@ -333,18 +334,27 @@ static double residual_size(const ffc__bulk *b, const double rhs[], const double
  * the Dirichlet values g = rhs / diag on their rows, their columns of K and
  * Kc times g moved to the right-hand side, Kc without Dirichlet rows and
  * columns (b->kv, filled by the caller) */
-static int solve_once(ffc__bulk *b, long nt, const long Ti[], const long Tj[], const double Tv[],
-                      const double rhs[], double x[])
+/* t = rhs with the Dirichlet values g = rhs / diag on their rows (times
+ * the factor's kfree) and the columns of K and Kc (Ti, Tj, Tv)[nt] at
+ * those dofs, times g, moved to the right-hand side */
+static void lift_dirichlet(const ffc__bulk *b, long nt, const long Ti[], const long Tj[], const double Tv[],
+                           const double rhs[], double t[])
 {
-    const long n = b->n;
-    double *t = b->t;
-    memcpy(t, rhs, (size_t)n * sizeof(double));
-    for (long i = 0; i < n; i++)
+    memcpy(t, rhs, (size_t)b->n * sizeof(double));
+    for (long i = 0; i < b->n; i++)
         if (b->big[i]) t[i] = b->kfree * (rhs[i] / b->diag[i]);
     for (long k = 0; k < b->nt; k++)
         if (b->big[b->Tj[k]] && !b->big[b->Ti[k]]) t[b->Ti[k]] -= b->Tv[k] * (rhs[b->Tj[k]] / b->diag[b->Tj[k]]);
     for (long k = 0; k < nt; k++)
         if (b->big[Tj[k]] && !b->big[Ti[k]]) t[Ti[k]] -= Tv[k] * (rhs[Tj[k]] / b->diag[Tj[k]]);
+}
+
+static int solve_once(ffc__bulk *b, long nt, const long Ti[], const long Tj[], const double Tv[],
+                      const double rhs[], double x[])
+{
+    const long n = b->n;
+    double *t = b->t;
+    lift_dirichlet(b, nt, Ti, Tj, Tv, rhs, t);
     int st = backsolve(b, t, x);
     if (st) return st;
     st = ffc_reduced_solve(n, b->ld, b->m, b->dof, b->G, nt, Ti, Tj, b->kv, b->sh, x, b->xc, b->w, b->A, b->piv,
@@ -440,9 +450,6 @@ void dgemv_(const char *trans, const int *m, const int *n, const double *alpha, 
 void dgemm_(const char *ta, const char *tb, const int *m, const int *n, const int *k, const double *alpha,
             const double *a, const int *lda, const double *b, const int *ldb, const double *beta, double *c,
             const int *ldc);
-void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
-void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a, const int *lda, const int *ipiv,
-             double *b, const int *ldb, int *info);
 
 /* the dofs cand[nc] that are neither Dirichlet rows nor in G yet, as new
  * compliance columns (the first factorization before) */
@@ -615,16 +622,8 @@ static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], dou
                 for (long r = 0; r < a; r++) aj[r] += v * gi[r];
             }
         }
-        double amax = 0.0;
-        for (long k = 0; k < a * a; k++) amax = fmax(amax, fabs(A[k]));
         for (long r = 0; r < a; r++) t[r] = -q[ad[r]];
-        int *ip = (int *)b->piv, info = 0;
-        dgetrf_(&ai, &ai, A, &ai, ip, &info);
-        if (info < 0) st = FFC_ERR_VALUE;
-        for (long k = 0; k < a && !st; k++)
-            if (!(fabs(A[k + k * a]) > 1e-15 * amax)) st = FFC_ERR_SINGULAR;
-        if (!st) dgetrs_("N", &ai, &one, A, &ai, ip, t, &ai, &info);
-        if (!st && info) st = FFC_ERR_VALUE;
+        st = ffc__lu_solve(a, A, b->piv, t);
         if (!st) dgemv_("N", &ai, &ai, &d1, M, &ai, t, &one, &d0, s, &one); /* s = M t */
     }
     if (!st) {
@@ -688,19 +687,15 @@ int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn f
     const int mi = (int)m, ldi = (int)b->ld, one = 1;
     const double d1 = 1.0;
     /* the contact force at u: b' = -(r - F_c(u)) on free rows, -r on
-     * Dirichlet rows; d0 = K^-1 b' with the Dirichlet values moved to the
-     * right-hand side (as solve_once) */
+     * Dirichlet rows (into w); d0 = K^-1 b' with the Dirichlet values moved
+     * to the right-hand side */
     long nt = 0;
     double fm = 0.0, fscale = 0.0; /* the contact force scale: its largest at an iteration's start */
     st = contact_eval(b, fn, ctx, u, FFC_TANGENT_NONE, &nt, &fm, bad);
     info->evals++;
     if (!st) {
-        for (long i = 0; i < n; i++) rhs[i] = b->big[i] ? -r[i] : b->r[i] - r[i];
-        for (long i = 0; i < n; i++) w[i] = b->big[i] ? rhs[i] / b->diag[i] : 0.0; /* Dirichlet increments */
-        for (long i = 0; i < n; i++)
-            if (b->big[i]) rhs[i] = b->kfree * w[i];
-        for (long k = 0; k < b->nt; k++)
-            if (b->big[b->Tj[k]] && !b->big[b->Ti[k]]) rhs[b->Ti[k]] -= b->Tv[k] * w[b->Tj[k]];
+        for (long i = 0; i < n; i++) w[i] = b->big[i] ? -r[i] : b->r[i] - r[i];
+        lift_dirichlet(b, 0, NULL, NULL, NULL, w, rhs);
         st = backsolve(b, rhs, d0);
     }
     /* y = d0_C + G z */

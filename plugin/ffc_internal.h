@@ -25,4 +25,10 @@ double ffc__facet_size2(const double X[][3]);
 /* Foot on the facet's extension (no clamping): xi = xi_free. */
 int ffc__project_free(int nn, const double X[][3], const double p[3], ffc_proj *out);
 
+/* LU with partial pivoting of the column-major A[m*m] in place, then b =
+ * A^-1 b (LAPACK); piv[m] work.  FFC_ERR_SINGULAR for a pivot below 1e-15
+ * of the largest entry, FFC_ERR_NONFINITE for a non-finite entry
+ * (ffc_reduced.c). */
+int ffc__lu_solve(long m, double A[], long piv[], double b[]);
+
 #endif

@@ -3,6 +3,7 @@
  * dense system (I + G Kcc) x_C = y_C that replaces a factorization of
  * K + Kc (see ffc.h). */
 #include "ffc.h"
+#include "ffc_internal.h"
 
 #include <math.h>
 #include <string.h>
@@ -68,7 +69,7 @@ void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a, 
  * solve of A z = b (b overwritten by z); the pivots are kept as ints in
  * piv's storage.  A pivot below 1e-15 of the largest entry is a singular
  * system (rank lost to round-off). */
-static int lu_solve(long m, double A[], long piv[], double b[])
+int ffc__lu_solve(long m, double A[], long piv[], double b[])
 {
     if (m == 0) return FFC_OK;
     if (m > 2147483647L / m) return FFC_ERR_SIZE;
@@ -132,7 +133,7 @@ int ffc_reduced_solve(long n, long ld, long m, const long dof[], const double G[
             if (!isfinite(xc[k])) s = FFC_ERR_NONFINITE;
         }
     }
-    if (!s) s = lu_solve(m, A, piv, xc);
+    if (!s) s = ffc__lu_solve(m, A, piv, xc);
     if (!s) { /* w = P Kcc' x_C */
         for (long t = 0; t < nt; t++)
             if (Tv[t] != 0.0) w[Ti[t]] += Tv[t] * xc[pos[Tj[t]]];

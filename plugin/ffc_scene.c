@@ -968,10 +968,11 @@ static int newton_contact(void *ctx, const double u[], int tangent, double R[], 
     if (c->v0)
         for (long i = 0; i < 3 * c->s->nv; i++) c->s->v[i] = c->v0[i] + c->s->dvdu * (u[i] - c->u0[i]);
     const int st = ffc_scene_assemble(c->s, u, tangent, R, cap, Ti, Tj, Tv, nt, bad);
+    const char *name[3] = {"Fx", "Fy", "Fz"};
     *fmag = 0.0;
     for (int i = 0; i < 3; i++) {
         double f = 0.0;
-        for (int k = 0; k < c->s->np; k++) f += c->s->p[k].st.force[i];
+        ffc_scene_stat(c->s, -1, name[i], 0, &f);
         *fmag += fabs(f);
     }
     return st;

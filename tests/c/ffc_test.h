@@ -9,6 +9,8 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
 #include <cmocka.h>
 
 #include "ffc.h"
@@ -131,6 +133,46 @@ static inline void test_pair_scene(double X[], long Fm[], long Fs[])
             for (int k = 0; k < 6; k++) Fs[6 * f + k] = t[k];
             f++;
         }
+}
+
+/* x = M^-1 b, M row-major n x n, by Gaussian elimination with partial
+ * pivoting on a copy (a test's own reference solve) */
+static inline void test_dense_solve(int n, const double *M, const double *b, double *x)
+{
+    double *A = malloc(sizeof(double) * n * n), *c = malloc(sizeof(double) * n);
+    if (!A || !c) fail_msg("test_dense_solve: out of memory");
+    memcpy(A, M, sizeof(double) * n * n);
+    memcpy(c, b, sizeof(double) * n);
+    for (int k = 0; k < n; k++) {
+        int p = k;
+        for (int i = k + 1; i < n; i++)
+            if (fabs(A[i * n + k]) > fabs(A[p * n + k])) p = i;
+        for (int j = 0; j < n; j++) { const double t = A[k * n + j]; A[k * n + j] = A[p * n + j]; A[p * n + j] = t; }
+        const double t = c[k]; c[k] = c[p]; c[p] = t;
+        for (int i = k + 1; i < n; i++) {
+            const double f = A[i * n + k] / A[k * n + k];
+            for (int j = k; j < n; j++) A[i * n + j] -= f * A[k * n + j];
+            c[i] -= f * c[k];
+        }
+    }
+    for (int i = n - 1; i >= 0; i--) {
+        double v = c[i];
+        for (int j = i + 1; j < n; j++) v -= A[i * n + j] * x[j];
+        x[i] = v / A[i * n + i];
+    }
+    free(A);
+    free(c);
+}
+
+/* the unit square [0,1]^2 at height z: nodes base..base+3 of X */
+static inline void test_unit_square(double z, double X[], long base)
+{
+    const double c[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int a = 0; a < 4; a++) {
+        X[3 * (base + a)] = c[a][0];
+        X[3 * (base + a) + 1] = c[a][1];
+        X[3 * (base + a) + 2] = z;
+    }
 }
 
 #endif

@@ -17,25 +17,24 @@
 #define N (3 * NV)
 static const double D = 2e-3, EPS = 2e3, KG = 100.0, KS = 300.0, TGV = 1e30;
 
-static void square(double z, double X[], long base)
-{
-    const double c[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    for (int a = 0; a < 4; a++) {
-        X[3 * (base + a)] = c[a][0];
-        X[3 * (base + a) + 1] = c[a][1];
-        X[3 * (base + a) + 2] = z;
-    }
-}
 
 static double XSHIFT = 0.0; /* the slave square's offset along x */
+
+/* a spring KS between dofs i and j: four triplets at *t */
+static void spring(long i, long j, long Ti[], long Tj[], double Tv[], long *t)
+{
+    const long p[4][2] = {{i, i}, {j, j}, {i, j}, {j, i}};
+    const double v[4] = {KS, KS, -KS, -KS};
+    for (int e = 0; e < 4; e++) { Ti[*t] = p[e][0]; Tj[*t] = p[e][1]; Tv[(*t)++] = v[e]; }
+}
 
 static ffc_scene *make(double mu, double kgs, long *nt, long Ti[], long Tj[], double Tv[], double Kd[N * N])
 {
     double X[3 * NV];
-    square(-D, X, 0);
+    test_unit_square(-D, X, 0);
     for (int a = 0; a < 4; a++) X[3 * a] += XSHIFT;
-    square(0.0, X, 4);
-    square(-1.0, X, 8);
+    test_unit_square(0.0, X, 4);
+    test_unit_square(-1.0, X, 8);
     const long Fs[6] = {0, 2, 1, 0, 3, 2}, Fm[6] = {4, 5, 6, 4, 6, 7};
     ffc_effects fx = {mu > 0, 0, 0};
     ffc_scene *s = NULL;
@@ -57,19 +56,9 @@ static ffc_scene *make(double mu, double kgs, long *nt, long Ti[], long Tj[], do
     for (int sq = 0; sq < 3; sq++)
         for (int a = 0; a < 4; a++)
             for (int b = a + 1; b < 4; b++)
-                for (int c = 0; c < 3; c++) {
-                    const long i = 3 * (4 * sq + a) + c, j = 3 * (4 * sq + b) + c;
-                    const long p[4][2] = {{i, i}, {j, j}, {i, j}, {j, i}};
-                    const double v[4] = {KS, KS, -KS, -KS};
-                    for (int e = 0; e < 4; e++) { Ti[t] = p[e][0]; Tj[t] = p[e][1]; Tv[t++] = v[e]; }
-                }
-    for (int a = 0; a < 4; a++) /* master and third square tied, z springs */
-        for (int c = 0; c < 3; c++) {
-            const long i = 3 * (4 + a) + c, j = 3 * (8 + a) + c;
-            const long p[4][2] = {{i, i}, {j, j}, {i, j}, {j, i}};
-            const double v[4] = {KS, KS, -KS, -KS};
-            for (int e = 0; e < 4; e++) { Ti[t] = p[e][0]; Tj[t] = p[e][1]; Tv[t++] = v[e]; }
-        }
+                for (int c = 0; c < 3; c++) spring(3 * (4 * sq + a) + c, 3 * (4 * sq + b) + c, Ti, Tj, Tv, &t);
+    for (int a = 0; a < 4; a++) /* master and third square tied */
+        for (int c = 0; c < 3; c++) spring(3 * (4 + a) + c, 3 * (8 + a) + c, Ti, Tj, Tv, &t);
     *nt = t;
     memset(Kd, 0, sizeof(double) * N * N);
     for (long k = 0; k < t; k++) Kd[Ti[k] * N + Tj[k]] += Tv[k];
@@ -117,27 +106,6 @@ static void residual(ffc_scene *s, const double Kd[N * N], const double f[N], co
     }
 }
 
-/* x = A^-1 b, Gaussian elimination with partial pivoting (A, b destroyed) */
-static void dense_solve(double A[N * N], double b[N], double x[N])
-{
-    for (int k = 0; k < N; k++) {
-        int p = k;
-        for (int i = k + 1; i < N; i++)
-            if (fabs(A[i * N + k]) > fabs(A[p * N + k])) p = i;
-        for (int j = 0; j < N; j++) { const double t = A[k * N + j]; A[k * N + j] = A[p * N + j]; A[p * N + j] = t; }
-        const double t = b[k]; b[k] = b[p]; b[p] = t;
-        for (int i = k + 1; i < N; i++) {
-            const double q = A[i * N + k] / A[k * N + k];
-            for (int j = k; j < N; j++) A[i * N + j] -= q * A[k * N + j];
-            b[i] -= q * b[k];
-        }
-    }
-    for (int i = N - 1; i >= 0; i--) {
-        double v = b[i];
-        for (int j = i + 1; j < N; j++) v -= A[i * N + j] * x[j];
-        x[i] = v / A[i * N + i];
-    }
-}
 
 static double free_norm(const double r[N])
 {
@@ -145,6 +113,14 @@ static double free_norm(const double r[N])
     for (int i = 0; i < N; i++)
         if (i != 12) v += r[i] * r[i];
     return sqrt(v);
+}
+
+/* uc = uf to 1e-10 of uf's largest entry */
+static void check_same(const double uc[N], const double uf[N])
+{
+    double umax = 0;
+    for (int i = 0; i < N; i++) umax = fmax(umax, fabs(uf[i]));
+    for (int i = 0; i < N; i++) assert_close(uc[i], uf[i], 1e-10 * umax);
 }
 
 /* Newton on the full system (dense), to |r| <= 1e-13 x the contact force */
@@ -157,7 +133,7 @@ static void full_newton(ffc_scene *s, const double Kd[N * N], const double f[N],
         assert_int_equal(ffc_scene_stat(s, -1, "Fz", 0, &fz), FFC_OK);
         if (free_norm(r) <= 1e-13 * fabs(fz) && it > 0) return;
         for (int i = 0; i < N; i++) r[i] = -r[i];
-        dense_solve(Kt, r, dx);
+        test_dense_solve(N, Kt, r, dx);
         for (int i = 0; i < N; i++) u[i] += dx[i];
     }
     fail_msg("the full Newton did not converge");
@@ -187,9 +163,7 @@ static void check_case(double mu, double fx, double pz, double kgs, const char *
     o.ftol = 1e-12 * fabs(fz);
     ffc_newton_info in;
     assert_int_equal(ffc_scene_newton(s, r, uc, &o, &in, &bad), FFC_OK);
-    double umax = 0;
-    for (int i = 0; i < N; i++) umax = fmax(umax, fabs(uf[i]));
-    for (int i = 0; i < N; i++) assert_close(uc[i], uf[i], 1e-10 * umax);
+    check_same(uc, uf);
     residual(s, Kd, f, uc, r, NULL);
     assert_true(free_norm(r) <= 2 * o.ftol);
     assert_true(in.res <= o.ftol);
@@ -287,9 +261,7 @@ static void test_growth(void **state)
         full_newton(s, Kd, f, uf);
         residual(s, Kd, f, uc, r, NULL);
         assert_int_equal(ffc_scene_newton(s, r, uc, &o, &in, &bad), FFC_OK);
-        double umax = 0;
-        for (int i = 0; i < N; i++) umax = fmax(umax, fabs(uf[i]));
-        for (int i = 0; i < N; i++) assert_close(uc[i], uf[i], 1e-10 * umax);
+        check_same(uc, uf);
         m[pass] = in.m;
     }
     assert_true(m[1] > m[0]);

@@ -11,31 +11,6 @@
 
 enum { N = 40, CAP = 16 };
 
-/* x = M^-1 b by Gaussian elimination with partial pivoting on a copy of
- * the row-major M[N][N] (the test's own reference) */
-static void dense_solve(const double M[N][N], const double b[N], double x[N])
-{
-    double A[N][N + 1];
-    for (int i = 0; i < N; i++) {
-        memcpy(A[i], M[i], sizeof M[i]);
-        A[i][N] = b[i];
-    }
-    for (int k = 0; k < N; k++) {
-        int p = k;
-        for (int i = k + 1; i < N; i++)
-            if (fabs(A[i][k]) > fabs(A[p][k])) p = i;
-        for (int j = 0; j <= N; j++) { double t = A[k][j]; A[k][j] = A[p][j]; A[p][j] = t; }
-        for (int i = k + 1; i < N; i++) {
-            const double f = A[i][k] / A[k][k];
-            for (int j = k; j <= N; j++) A[i][j] -= f * A[k][j];
-        }
-    }
-    for (int i = N - 1; i >= 0; i--) {
-        double s = A[i][N];
-        for (int j = i + 1; j < N; j++) s -= A[i][j] * x[j];
-        x[i] = s / A[i][i];
-    }
-}
 
 typedef struct {
     double K[N][N], Ks[N][N], sh[N];  /* K, the factorized K + diag(sh) */
@@ -91,7 +66,7 @@ static void reduced_check(rscene *r, uint64_t *s)
     for (long k = 0; k < nmiss; k++) {
         double e[N] = {0}, x[N];
         e[miss[k]] = 1.0;
-        dense_solve(r->Ks, e, x);
+        test_dense_solve(N, &r->Ks[0][0], e, x);
         assert_int_equal(ffc_reduced_add(N, CAP, r->m, r->dof, r->G, x, miss[k]), FFC_OK);
         r->m++;
     }
@@ -100,15 +75,15 @@ static void reduced_check(rscene *r, uint64_t *s)
     double b[N], y[N], w[N], z[N], x[N], xr[N], xc[CAP], A[CAP * CAP];
     long piv[CAP];
     for (int i = 0; i < N; i++) b[i] = test_rand(s, -1, 1);
-    dense_solve(r->Ks, b, y);
+    test_dense_solve(N, &r->Ks[0][0], b, y);
     assert_int_equal(ffc_reduced_solve(N, CAP, r->m, r->dof, r->G, r->nt, r->Ti, r->Tj, r->Tv, r->sh, y, xc, w, A, piv, pos),
                      FFC_OK);
-    dense_solve(r->Ks, w, z);
+    test_dense_solve(N, &r->Ks[0][0], w, z);
     for (int i = 0; i < N; i++) xr[i] = y[i] - z[i];
     double M[N][N];
     memcpy(M, r->K, sizeof M);
     for (long t = 0; t < r->nt; t++) M[r->Ti[t]][r->Tj[t]] += r->Tv[t];
-    dense_solve(M, b, x);
+    test_dense_solve(N, &M[0][0], b, x);
     double err = 0, sc = 0;
     for (int i = 0; i < N; i++) { err = fmax(err, fabs(xr[i] - x[i])); sc = fmax(sc, fabs(x[i])); }
     if (!(err <= 1e-12 * sc)) fail_msg("reduced solve error %.3g of %.3g (m = %ld)", err, sc, r->m);

@@ -14,15 +14,6 @@
 #define NV 16
 static const double D0 = 1e-3, D1 = 3e-3, EPS = 1e3;
 
-static void square(double z, double X[], long base)
-{
-    const double c[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    for (int a = 0; a < 4; a++) {
-        X[3 * (base + a)] = c[a][0];
-        X[3 * (base + a) + 1] = c[a][1];
-        X[3 * (base + a) + 2] = z;
-    }
-}
 /* facets of the square at base: up = 1 normal +z, 0 normal -z */
 static void facets(long base, int up, long F[6])
 {
@@ -32,10 +23,10 @@ static void facets(long base, int up, long F[6])
 }
 static void geometry(double X[3 * NV], long Fs0[6], long Fm0[6], long Fs1[6], long Fm1[6])
 {
-    square(-D0, X, 0);
-    square(0.0, X, 4);
-    square(1.0 - D1, X, 8);
-    square(1.0, X, 12);
+    test_unit_square(-D0, X, 0);
+    test_unit_square(0.0, X, 4);
+    test_unit_square(1.0 - D1, X, 8);
+    test_unit_square(1.0, X, 12);
     facets(0, 0, Fs0);
     facets(4, 1, Fm0);
     facets(8, 0, Fs1);
@@ -288,7 +279,7 @@ static void test_touching_stick(void **state)
     double X[3 * NV], u[3 * NV] = {0}, R[3 * NV];
     long Fs0[6], Fm0[6], Fs1[6], Fm1[6], bad, nt;
     geometry(X, Fs0, Fm0, Fs1, Fm1);
-    square(0.0, X, 0); /* pair 0's slave touches its master */
+    test_unit_square(0.0, X, 0); /* pair 0's slave touches its master */
     for (int mu10 = 0; mu10 <= 3; mu10 += 3) {
         ffc_effects fx = {1, 0, 0};
         ffc_scene *s = NULL;
