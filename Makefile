@@ -4,6 +4,8 @@
 #   make demo       set-up, build, Hertz case study end to end (quadratic, h_c = 0.05)
 #   make test       set-up, build, whole test suite
 #   make run CASE=<name> ARGS="<options>"   one case study -> results/<name>.json
+#   make exercise N=<k> ARGS="<options> name=value"   exercise k, checked (README "Exercises")
+#   make exercises-check   every exercise's reference solution and common slip
 
 CC      ?= gcc
 CXX     ?= g++
@@ -61,6 +63,14 @@ run: all
 
 clean:
 	rm -rf $(B)
+
+# exercises (scripts/exercises/, README "Exercises")
+.PHONY: exercise exercises-check
+exercise: all
+	@mkdir -p results
+	@sh scripts/exercises/run.sh $(N) $(ARGS)
+exercises-check: all
+	@sh tests/exercises.sh
 
 # meshes at their default sizes (cases mesh other sizes on demand)
 MSH := $(patsubst meshes/%.geo,$(B)/meshes/%.msh,$(wildcard meshes/*.geo))

@@ -62,6 +62,16 @@ case "outside" in *"$pat"*)
     if sh tests/outside.sh >"$log" 2>&1; then pass=$((pass + 1)); else fail=$((fail + 1)); report "tests/outside.sh"; fi ;;
 esac
 
+# the exercises: reference solutions right, common slips called wrong
+case "exercises" in *"$pat"*)
+    sh tests/exercises.sh >"$log" 2>&1
+    p=$(sed -n 's/^\([0-9]*\) passed, \([0-9]*\) failed$/\1/p' "$log" | tail -1)
+    f=$(sed -n 's/^\([0-9]*\) passed, \([0-9]*\) failed$/\2/p' "$log" | tail -1)
+    p=${p:-0}; f=${f:-1}
+    pass=$((pass + p)); fail=$((fail + f))
+    [ "$f" -gt 0 ] && report "tests/exercises.sh (make exercises-check)" ;;
+esac
+
 for t in tests/edp/test_*.edp tests/hard/*.edp; do
     [ -f "$t" ] || continue
     case "$t" in *"$pat"*) ;; *) continue ;; esac

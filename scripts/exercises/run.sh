@@ -1,0 +1,26 @@
+#!/bin/sh
+# run.sh: runs exercise k with the student's settings and predictions and
+# checks them (make exercise N=<k> ARGS="<options> name=value ...").
+# Options (-name value) go to the exercise's scene, name=value predictions
+# to the checker. Exit status: the checker's (0 right, 3 a prediction wrong,
+# 4 the run wrong, 2 bad input).
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../.." && pwd)
+k=$1
+[ -n "$k" ] || { echo "usage: make exercise N=<k> ARGS=\"<options> name=value ...\" (exercises: $(ls "$here" | sed -n 's/^ex\([0-9]*\)-.*\.edp$/\1/p' | sort -n | tr '\n' ' '))"; exit 2; }
+shift
+scene=$(ls "$here"/ex"$k"-*.edp 2>/dev/null | head -1)
+[ -n "$scene" ] || { echo "no exercise $k (exercises: $(ls "$here" | sed -n 's/^ex\([0-9]*\)-.*\.edp$/\1/p' | sort -n | tr '\n' ' '))"; exit 2; }
+opts=""; preds=""
+for a in "$@"; do
+    case "$a" in
+        *=*) preds="$preds $a" ;;
+        *) opts="$opts $a" ;;
+    esac
+done
+json=results/exercise-$k.json
+rm -f "$json"
+# shellcheck disable=SC2086
+sh "$root/scripts/ff" "$scene" $opts || echo "(the scene stopped with status $?)"
+# shellcheck disable=SC2086
+sh "$here/check.sh" "$json" $preds
