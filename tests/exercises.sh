@@ -4,7 +4,7 @@
 # be judged right, run and predictions), then its common slip (the
 # "wrong:" lines, checked on the same results: each must be judged a wrong
 # prediction), then the checker on made-up results (a wrong run, bad
-# input). Ends with "N passed, N failed".
+# input) and run.sh on bad input. Ends with "N passed, N failed".
 cd "$(dirname "$0")/.." || exit 2
 sol=scripts/exercises/SOLUTIONS.md
 pass=0; fail=0
@@ -52,6 +52,14 @@ sh scripts/exercises/check.sh "$fake" y=1 >"$log" 2>&1
 if [ $? -eq 2 ] && grep -q 'no quantity "y"' "$log"; then ok; else bad "checker: an unknown quantity"; fi
 sh scripts/exercises/check.sh "$fake" x=abc >"$log" 2>&1
 if [ $? -eq 2 ] && grep -q "'abc' is not a number" "$log"; then ok; else bad "checker: a prediction that is not a number"; fi
+# run.sh refuses bad input before the scene runs (no results file made)
+for args in "x=1|no quantity" "a=1 a=2|predicted twice" "-hc|has no value" "a=abc|is not a number" "foo|neither an option"; do
+    rm -f results/exercise-1.json
+    # shellcheck disable=SC2086
+    sh scripts/exercises/run.sh 1 ${args%%|*} >"$log" 2>&1
+    if [ $? -eq 2 ] && grep -q "${args#*|}" "$log" && [ ! -f results/exercise-1.json ]; then ok
+    else bad "run.sh: '${args%%|*}' not refused with '${args#*|}'"; fi
+done
 rm -f "$fake" "$log" "$log.args"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -19,6 +19,7 @@ for a in "$@"; do
              case "$value" in
                  ''|*[!0-9eE.+-]*) echo "check.sh: prediction '$a': '$value' is not a number"; exit 2 ;;
              esac
+             case " $preds " in *" $name="*) echo "check.sh: '$name' predicted twice"; exit 2 ;; esac
              preds="$preds $name=$value" ;;
     esac
 done
@@ -41,7 +42,7 @@ END {
     nq = split(f["quantities"], q, " ")
     for (i = 1; i <= nq; i++) known[q[i]] = 1
     for (k in given) if (!(k in known)) {
-        printf "check.sh: no quantity \"%s\" in exercise %s; its quantities are:%s\n", k, f["exercise"], " " f["quantities"]
+        printf "check.sh: no quantity \"%s\" in exercise %s; its quantities are:%s\n", k, f["exercise"], f["quantities"]
         exit 2
     }
     printf "Exercise %s: %s\n", f["exercise"], f["title"]

@@ -11,13 +11,21 @@ k=$1
 shift
 scene=$(ls "$here"/ex"$k"-*.edp 2>/dev/null | head -1)
 [ -n "$scene" ] || { echo "no exercise $k (exercises: $(ls "$here" | sed -n 's/^ex\([0-9]*\)-.*\.edp$/\1/p' | sort -n | tr '\n' ' '))"; exit 2; }
-opts=""; preds=""
+opts=""; preds=""; want=""
+names=$(sed -n 's/.*exQuantity("\([A-Za-z0-9_]*\)".*/\1/p' "$scene" | tr '\n' ' ')
 for a in "$@"; do
+    if [ -n "$want" ]; then opts="$opts $a"; want=""; continue; fi
     case "$a" in
-        *=*) preds="$preds $a" ;;
-        *) opts="$opts $a" ;;
+        -*) opts="$opts $a"; want=$a ;;
+        *=*) n=${a%%=*}
+             case " $names " in *" $n "*) ;; *) echo "exercise $k: no quantity \"$n\" to predict; its quantities are: $names"; exit 2 ;; esac
+             case " $preds " in *" $n="*) echo "exercise $k: \"$n\" predicted twice"; exit 2 ;; esac
+             case "${a#*=}" in ''|*[!0-9eE.+-]*) echo "exercise $k: prediction '$a': '${a#*=}' is not a number"; exit 2 ;; esac
+             preds="$preds $a" ;;
+        *) echo "exercise $k: '$a' is neither an option (-name value) nor a prediction (name=value)"; exit 2 ;;
     esac
 done
+[ -z "$want" ] || { echo "exercise $k: option $want has no value"; exit 2; }
 json=results/exercise-$k.json
 rm -f "$json"
 # shellcheck disable=SC2086
