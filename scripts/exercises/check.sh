@@ -8,21 +8,33 @@
 #   sh scripts/exercises/check.sh results/exercise-1.json a=0.176 p0=61.6
 # Exit status: 0 all right (quantities not predicted are only shown),
 # 3 a prediction is wrong, 4 the run is wrong, 2 bad input.
+# Predictions are checked first: each names a quantity of the exercise,
+# once, with a number.
+#   sh scripts/exercises/check.sh --names "a p0" a=0.176    only that (run.sh)
+predictions() {   # predictions "<names>" name=value ...: the valid ones, or exit 2
+    names=$1; shift; preds=""
+    for a in "$@"; do
+        case "$a" in
+            *=*) ;;
+            *) echo "check.sh: '$a' is not a prediction (name=value)"; exit 2 ;;
+        esac
+        name=${a%%=*}; value=${a#*=}
+        case " $names " in *" $name "*) ;; *) echo "check.sh: no quantity \"$name\" to predict; the quantities are: $names"; exit 2 ;; esac
+        case " $preds " in *" $name="*) echo "check.sh: '$name' predicted twice"; exit 2 ;; esac
+        case "$value" in ''|*[!0-9eE.+-]*) echo "check.sh: prediction '$a': '$value' is not a number"; exit 2 ;; esac
+        preds="$preds $a"
+    done
+}
+[ -n "$1" ] || { echo "usage: check.sh <exercise json> [name=value ...]"; exit 2; }
+if [ "$1" = --names ]; then
+    names=$2; shift 2
+    predictions "$names" "$@"
+    exit 0
+fi
 json=$1
-[ -n "$json" ] || { echo "usage: check.sh <exercise json> [name=value ...]"; exit 2; }
 [ -f "$json" ] || { echo "check.sh: no results file '$json' (the run did not finish)"; exit 2; }
 shift
-preds=""
-for a in "$@"; do
-    case "$a" in
-        *=*) name=${a%%=*}; value=${a#*=}
-             case "$value" in
-                 ''|*[!0-9eE.+-]*) echo "check.sh: prediction '$a': '$value' is not a number"; exit 2 ;;
-             esac
-             case " $preds " in *" $name="*) echo "check.sh: '$name' predicted twice"; exit 2 ;; esac
-             preds="$preds $name=$value" ;;
-    esac
-done
+predictions "$(sed -n 's/^ *"quantities": "\(.*\)",$/\1/p' "$json")" "$@"
 awk -v preds="$preds" '
 function num(s) { return s + 0 }
 function absf(x) { return x < 0 ? -x : x }
@@ -40,11 +52,6 @@ END {
     n = split(preds, pl, " ")
     for (i = 1; i <= n; i++) { split(pl[i], kv, "="); p[kv[1]] = kv[2]; given[kv[1]] = 1 }
     nq = split(f["quantities"], q, " ")
-    for (i = 1; i <= nq; i++) known[q[i]] = 1
-    for (k in given) if (!(k in known)) {
-        printf "check.sh: no quantity \"%s\" in exercise %s; its quantities are:%s\n", k, f["exercise"], f["quantities"]
-        exit 2
-    }
     printf "Exercise %s: %s\n", f["exercise"], f["title"]
     printf "  settings: %s\n", f["settings"]
     if (f["converged"] != "1") printf "  the run did not converge: %s\n", f["reason"]

@@ -17,15 +17,13 @@ for a in "$@"; do
     if [ -n "$want" ]; then opts="$opts $a"; want=""; continue; fi
     case "$a" in
         -*) opts="$opts $a"; want=$a ;;
-        *=*) n=${a%%=*}
-             case " $names " in *" $n "*) ;; *) echo "exercise $k: no quantity \"$n\" to predict; its quantities are: $names"; exit 2 ;; esac
-             case " $preds " in *" $n="*) echo "exercise $k: \"$n\" predicted twice"; exit 2 ;; esac
-             case "${a#*=}" in ''|*[!0-9eE.+-]*) echo "exercise $k: prediction '$a': '${a#*=}' is not a number"; exit 2 ;; esac
-             preds="$preds $a" ;;
+        *=*) preds="$preds $a" ;;
         *) echo "exercise $k: '$a' is neither an option (-name value) nor a prediction (name=value)"; exit 2 ;;
     esac
 done
 [ -z "$want" ] || { echo "exercise $k: option $want has no value"; exit 2; }
+# shellcheck disable=SC2086
+sh "$here/check.sh" --names "$names" $preds || exit 2
 json=results/exercise-$k.json
 rm -f "$json"
 # shellcheck disable=SC2086
