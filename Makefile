@@ -120,6 +120,11 @@ fuzz: $(FUZZ)
 # tests/fuzz/regress/ (every run of make test replays that folder)
 
 # what accuracy costs in time (README "What accuracy costs")
+# the bar impact on 3 mesh levels x 3 time steps -> results/impact-grid.csv
+.PHONY: impact-grid
+impact-grid: all
+	@sh scripts/impact-grid.sh
+
 .PHONY: study study-quick
 study: all
 	@sh scripts/study.sh full

@@ -656,6 +656,11 @@ long ffc_scene_nfacets(const ffc_scene *s, int pair, int master);
 /* ffc_volume_check of the scene's tetrahedra at X + u. */
 int ffc_scene_check_volume(const ffc_scene *s, const double u[], long *bad);
 
+/* mask[n] (n = 3 nv): 1 on the three dofs of every node of a slave or a
+ * master facet of any pair, 0 elsewhere.  Returns the number of such
+ * nodes, or a negative status (FFC_ERR_SIZE for n != 3 nv). */
+long ffc_scene_surface_mask(const ffc_scene *s, long n, double mask[]);
+
 /* Bulk factorization of a small-strain scene.  The scene keeps the bulk
  * stiffness K (n = 3 nv dofs, node-major: dof 3 i + c is component c of
  * node i; symmetric positive definite once the Dirichlet rows carry a
@@ -987,6 +992,23 @@ int ffc_reduced_solve(long n, long ld, long m, const long dof[], const double G[
  * FFC_ERR_INDEX for an index outside [0, n). */
 long ffc_triplets_sum(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long Ci[],
                       long Cj[], double Cv[], long rp[], long w[]);
+
+/* ------------------------------------------------ mass redistribution */
+/* The interpolation T (n x n) of a redistributed mass M_red = T' M T for
+ * contact dynamics: row i is e_i for a dof off the contact surfaces
+ * (spread[i] == 0); a dof on them (spread[i] != 0) takes the mean of the
+ * dofs off the surfaces that the mass matrix (triplets Mi, Mj, Mv [nm],
+ * duplicates allowed) couples to it, weighted by |M_ij|.  Rows sum to 1
+ * (total mass and linear momentum kept), T T = T, and M_red has no mass on
+ * the surface dofs, which then follow the quasi-static balance of elastic
+ * and contact forces: no contact chatter, and the trapezoidal rule keeps
+ * the energy in persistent contact.  A surface dof coupled to no dof off
+ * the surfaces (a body one element thick) keeps its row e_i: *kept counts
+ * them.  T goes to the triplets (Ti, Tj, Tv)[cap], *nt of them (the count
+ * needed, with FFC_ERR_CAPACITY; at most n + nm).  Work: wsum[n]. */
+int ffc_mass_spread(long n, long nm, const long Mi[], const long Mj[], const double Mv[],
+                    const double spread[], long cap, long Ti[], long Tj[], double Tv[], long *nt,
+                    long *kept, double wsum[]);
 
 /* ------------------------------------------------- quadratic tetrahedra */
 /* Numbers the nodes of P2 tetrahedra T[nt*4] (nv vertices) as FreeFEM

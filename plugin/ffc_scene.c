@@ -688,6 +688,26 @@ int ffc_scene_check_volume(const ffc_scene *s, const double u[], long *bad)
     return ffc_volume_check(s->nt, s->T, s->nv, s->X, u, bad);
 }
 
+long ffc_scene_surface_mask(const ffc_scene *s, long n, double mask[])
+{
+    if (!s || !mask) return FFC_ERR_NULL;
+    if (n != 3 * s->nv) return FFC_ERR_SIZE;
+    for (long i = 0; i < n; i++) mask[i] = 0.0;
+    long count = 0;
+    for (int k = 0; k < s->np; k++) {
+        const scene_pair *p = &s->p[k];
+        for (int side = 0; side < 2; side++) {
+            const long nf = side ? p->nfm : p->nfs, *F = side ? p->Fm : p->Fs;
+            for (long a = 0; a < nf * s->nper; a++) {
+                double *m = mask + 3 * F[a];
+                if (m[0] == 0.0) count++;
+                m[0] = m[1] = m[2] = 1.0;
+            }
+        }
+    }
+    return count;
+}
+
 /* mean longest edge (vertices 0-2) of nf facets F[nf*nper] at positions X */
 static double mean_size(int nper, long nf, const long F[], const double X[])
 {

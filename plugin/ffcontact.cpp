@@ -1265,6 +1265,54 @@ long sceneInverted(const Named &, FFScene *const &C, KN<double> *const &u)
     return ffc_scene_check_volume(d.s, need_scene_u(fn, d, u), &bad) == FFC_ERR_INVERTED ? bad : -1;
 }
 
+// ffcSurfaceDofs(C, mask): mask = 1 on the dofs of every node of the
+// pairs' facets (slave and master sides), 0 elsewhere (resized to the
+// scene's dofs). Returns the number of such nodes.
+long sceneSurfaceDofs(const Named &, FFScene *const &C, KN<double> *const &mask)
+{
+    const char *fn = "ffcSurfaceDofs";
+    SceneData &d = need_scene(fn, C);
+    if (!mask) fail(fn, "argument 'mask': array is not defined");
+    if (ffc_scene_npairs(d.s) == 0) fail(fn, "argument 'C': the scene has no pair yet (ffcAddPair)");
+    std::vector<double> m(3 * d.nn);
+    const long count = ffc_scene_surface_mask(d.s, 3 * d.nn, m.data());
+    if (count < 0) scene_error(fn, (int)count, -1, "the surface dofs");
+    mask->resize(3 * d.nn);
+    for (long i = 0; i < 3 * d.nn; i++) (*mask)[i] = m[i];
+    return count;
+}
+
+// ffcMassSpread(M, spread, T): the interpolation T of the redistributed
+// mass T' M T (ffc_mass_spread): the dofs with spread[i] != 0 take the
+// mean of their neighbours in M off that set. Returns the spread dofs
+// that kept their own row (no neighbour off the set).
+long massSpread(Matrice_Creuse<double> *const &M, KN<double> *const &spread, Matrice_Creuse<double> *const &T)
+{
+    const char *fn = "ffcMassSpread";
+    std::vector<long> Mi, Mj;
+    std::vector<double> Mv;
+    const long n = matrix_triplets(fn, "M", M, Mi, Mj, Mv);
+    if (!spread) fail(fn, "argument 'spread': array is not defined");
+    if (spread->N() != n) {
+        std::ostringstream s;
+        s << "argument 'spread': size " << spread->N() << ", expected " << n << " (the rows of M)";
+        fail(fn, s.str());
+    }
+    need_finite(fn, "spread", spread);
+    if (!T) fail(fn, "argument 'T': matrix is not defined");
+    for (size_t k = 0; k < Mv.size(); k++)
+        if (!std::isfinite(Mv[k])) fail(fn, "argument 'M': a non-finite entry");
+    const long nm = (long)Mv.size(), cap = n + nm;
+    std::vector<long> Ti(cap), Tj(cap);
+    std::vector<double> Tv(cap), w(n);
+    long nt = 0, kept = 0;
+    int st = ffc_mass_spread(n, nm, Mi.data(), Mj.data(), Mv.data(), &(*spread)[0], cap, Ti.data(), Tj.data(),
+                             Tv.data(), &nt, &kept, w.data());
+    if (st) fail(fn, std::string("the interpolation: ") + ffc_strerror(st));
+    triplets_to_matrix(fn, n, nt, Ti.data(), Tj.data(), Tv.data(), false, T);
+    return kept;
+}
+
 // ffcBulk(C, K, maxContactDofs = 4000): the scene keeps the bulk stiffness K
 // (small strain; Dirichlet rows with FreeFEM's tgv) for ffcSolve, which
 // factorizes it once (CHOLMOD, in C) at its first call. Returns the dofs.
@@ -1533,6 +1581,7 @@ void init_scene()
     Global.Add("ffcMultipliers", "(", named<long, S, long, V, V>("ffcMultipliers", nullptr, 0, sceneMultipliersT));
     Global.Add("ffcInverted", "(", named<long, S, V>("ffcInverted", nullptr, 0, sceneInverted));
     Global.Add("ffcFixed", "(", named<long, S, V>("ffcFixed", nullptr, 0, sceneFixed));
+    Global.Add("ffcSurfaceDofs", "(", named<long, S, V>("ffcSurfaceDofs", nullptr, 0, sceneSurfaceDofs));
     Global.Add("ffcAutoPenalty", "(", named<double, S, long, V, V>("ffcAutoPenalty", nullptr, 0, sceneAutoPenalty));
     Global.Add("ffcFacetSize", "(", named<double, S>("ffcFacetSize", pair_only_names, 1, sceneFacetSize));
     typedef Matrice_Creuse<double> *M;
@@ -1555,6 +1604,8 @@ static void init()
     Global.Add("ffcArea", "(",
                new OneOperator3_<double, pmesh3, KN<long> *, KN<double> *>(ffcArea));
     Global.Add("ffcTime", "(", new OneOperator0<double>(ffcTime));
+    Global.Add("ffcMassSpread", "(",
+               new OneOperator3_<long, Matrice_Creuse<double> *, KN<double> *, Matrice_Creuse<double> *>(massSpread));
     Global.Add("ffcInverted", "(", new OneOperator2_<long, pmesh3, KN<double> *>(ffcInverted));
     Global.Add("ffcP2Nodes", "(", new OneOperator2_<long, pmesh3, KN<double> *>(ffcP2Nodes));
     Global.Add("ffcSaveVTK", "(", new OneOperator2_<long, string *, KNM<double> *>(ffcSaveVTK));
