@@ -120,10 +120,12 @@ fuzz: $(FUZZ)
 # tests/fuzz/regress/ (every run of make test replays that folder)
 
 # what accuracy costs in time (README "What accuracy costs")
-# the bar impact on 3 mesh levels x 3 time steps -> results/impact-grid.csv
+# the impacts on 3 mesh levels x 3 time steps -> results/impact-grid*.csv
 .PHONY: impact-grid
 impact-grid: all
-	@sh scripts/impact-grid.sh
+	@sh scripts/impact-grid.sh bar
+	@sh scripts/impact-grid.sh spheres
+	@sh scripts/impact-grid.sh oblique
 
 .PHONY: study study-quick
 study: all
