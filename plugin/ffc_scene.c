@@ -420,7 +420,10 @@ static pair_call pair_view(const ffc_scene *s, const scene_pair *p, const double
     law->nodal = p->o.nodal;
     law->material_only = tangent == FFC_TANGENT_MATERIAL;
     law->mu = p->o.mu;
-    law->eps_t = p->o.eps_t > 0 ? p->o.eps_t : (s->fx.dynamic ? p->o.eps_n * s->dt : p->o.eps_n);
+    /* the default tangential penalty: eps_N per unit slip; in the velocity
+     * form eps_N / (dv/du), the same stiffness against the step's slip */
+    law->eps_t = p->o.eps_t > 0 ? p->o.eps_t
+                                : (s->fx.dynamic ? (s->dvdu > 0 ? p->o.eps_n / s->dvdu : p->o.eps_n * s->dt) : p->o.eps_n);
     law->dt = s->dt;
     law->dvdu = s->dvdu;
     law->fixed = s->fixed;
