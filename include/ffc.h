@@ -513,7 +513,7 @@ typedef struct {
     double eps_n;      /* normal penalty (force/length^3), > 0; 0: not set yet (assembly and
                           augmentation refuse the scene until it is: ffc_scene_auto_penalty) */
     double eps_t;      /* tangential penalty (force/length^3; dynamic: force*time/length^3),
-                          >= 0; 0: eps_n (dynamic: eps_n dt) */
+                          >= 0; 0: eps_n (dynamic: eps_n / dvdu, the same stiffness against the step's slip) */
     ffc_search_opts search; /* capture distances and edge tolerance */
     /* node-to-surface pairs (FFC_METHOD_NTS; the law's nu_s is mu) */
     double mu_d;       /* dynamic coefficient (1), 0 <= mu_d <= mu; < 0: mu */
