@@ -1,10 +1,10 @@
 // hertz.geo: quarter of an elastic hemisphere (radius 1, centre (0,0,1),
 // flat top z = 1) resting at the origin on a quarter block
-// [0,2] x [0,2] x [-2,0].  Mesh size hc within distance 0.3 of the origin,
-// growing with slope 0.5 up to 0.25.
+// [0,2] x [0,2] x [-2,0].  Mesh size hc within distance r0 (0.3) of the
+// origin, growing with slope 0.5 up to 0.25.
 //   gmsh -3 -format msh2 -setnumber hc 0.05 hertz.geo
 SetFactory("OpenCASCADE");
-DefineConstant[ hc = 0.05 ];
+DefineConstant[ hc = 0.05, r0 = 0.3 ];
 Mesh.MshFileVersion = 2.2;
 Mesh.MeshSizeFromPoints = 0;
 Mesh.MeshSizeExtendFromBoundary = 0;
@@ -45,5 +45,5 @@ Physical Surface("block_x2", 15) = {k_x2()};
 Physical Surface("block_y2", 16) = {k_y2()};
 
 Field[1] = MathEval;
-Field[1].F = Sprintf("Min(0.25, %g + 0.5 * Max(0, Sqrt(x*x + y*y + z*z) - 0.3))", hc);
+Field[1].F = Sprintf("Min(0.25, %g + 0.5 * Max(0, Sqrt(x*x + y*y + z*z) - %g))", hc, r0);
 Background Field = 1;
