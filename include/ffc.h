@@ -605,6 +605,29 @@ int ffc_scene_reset(ffc_scene *s);
 int ffc_scene_nts_step(ffc_scene *s);
 int ffc_scene_nts_rows(ffc_scene *s, const double u[], const double fixed[], long cap, long Bi[], long Bj[],
                        double Bv[], double Fv[], long ccap, double c[], long *ntrip, long *nrows, long *bad);
+
+/* The saddle-point solve of a node-to-surface step on the factored bulk
+ * (ffc_scene_set_bulk): the rows at u (ffc_scene_nts_rows with fixed[n])
+ * and [K Bf'; B Cm] [x; m] = [rhs; c] solved for x[n] and the
+ * multipliers m[*nrows] (mcap: capacity of m).
+ *
+ * Formulation: with K factored once, x0 = K^-1 rhs (Dirichlet values
+ * lifted as in ffc_scene_solve) and G the compliance of the free dofs C
+ * the rows touch (columns kept with the other solves'), x = x0 - K^-1
+ * Bf' m and the rows give the Schur complement system
+ *     (Cm - B_C G Bf_C') m = c - B x0        (nr x nr, dense LU),
+ * then x by one back-solve.  When K is singular and shifted (K + S, see
+ * ffc_scene_solve), K^-1 does not exist: y = x_C and m solve the coupled
+ *     [I - G S_C, G Bf_C'; B_C, Cm] [y; m] = [x0_C; c]
+ * (order |C| + nr) and x = x0 + (K + S)^-1 (S_C y - Bf' m).  Up to two
+ * steps of iterative refinement on the whole system's residual.
+ * FFC_ERR_EMPTY without a bulk, FFC_ERR_CAPACITY when m is too small
+ * (*nrows = the count needed) or C would hold more than the bulk's mmax
+ * dofs (*bad = their count), FFC_ERR_SINGULAR when the system cannot be
+ * factorized or its residual stays above 1e-6 relative; the errors of
+ * ffc_scene_nts_rows. */
+int ffc_scene_nts_solve(ffc_scene *s, const double u[], const double fixed[], const double rhs[], double x[],
+                        long mcap, double m[], long *nrows, long *bad);
 int ffc_scene_nts_update(ffc_scene *s, const double u[], long nrows, const double m[], long *changes, long *bad);
 
 /* Statistic `name` of pair k (k = -1: all pairs, summed or the largest)
@@ -718,9 +741,9 @@ int ffc_scene_solve_info(const ffc_scene *s, ffc_solve_info *info);
  *
  * Formulation: the bulk is linear, r(u) = K u - f + F_c(u) on the free
  * dofs.  From u (residual r[n] given), the increment d solves
- * K d + F_c(u + d) = b' = -(r - F_c(u)).  Let C be the dofs of every
- * linked point's slave and master facets (not Dirichlet), G = P_C K^-1
- * P_C^T their compliance (block back-solves, kept), d0 = K^-1 b'.  The
+ * K d + F_c(u + d) = b' = -(r - F_c(u)).  Let C be the free dofs that
+ * the contact force (or its tangent) has reached, G = P_C K^-1 P_C^T their
+ * compliance (block back-solves, kept between calls), d0 = K^-1 b'.  The
  * free dofs outside C carry no contact force, so with y = d_C the
  * interior is eliminated exactly and
  *     rho(y) = G^-1 (y - d0_C) + F_c(u + d)_C = 0     (m equations)
@@ -735,13 +758,26 @@ int ffc_scene_solve_info(const ffc_scene *s, ffc_solve_info *info);
  * z = G^-1 (y - d0_C) that holds C at y: the Newton equation gives its
  * step, dz = -rho - Kc_CC dy, and y = d0_C + G z is recomputed from it
  * (no drift between the two; a Cholesky factor of G gives only the
- * start, y = 0: C held at u, the interior equilibrated).  At the end
+ * start, y = 0: C held at u, the interior equilibrated).  C grows as the
+ * contact does: the contact evaluation reads the dofs R of the pairs'
+ * facets, whose displacement u + d0 + H z comes from the compliance
+ * columns kept on those rows (H = P_R K^-1 P_C^T, |R| x |C|); a force or
+ * tangent entry on a dof of R outside C makes it join C with z = 0 (the
+ * same state), at the start (the start is then taken again: at the first
+ * call of a load step the rest moves by the whole increment, and what it
+ * reaches is held at u too), at an iterate, or at a line-search point
+ * (the iteration is then taken again).  C thus holds the dofs in contact
+ * at some point of the solve, not every linked point's (Hertz P1 h_c =
+ * 0.025: 855 columns instead of 1,343).  At the end
  * d = d0 + K^-1 P_C^T z (one back-solve): the state whose residual is
  * rho.  With the shift S of a singular K (see above), K + S and
  * F_c - S y take the place of K and F_c.  A dynamic scene's velocities
  * follow u: v = v0 + dvdu (u + d - u).  Per call: two back-solves, one
- * contact evaluation per iteration and line-search point, a Cholesky of
- * G when C grew. */
+ * contact evaluation per iteration and line-search point, a column per
+ * dof that joins C, the Cholesky factor of G extended when C grew.  A
+ * singular K is shifted on the nodes the contact force reaches at u (or,
+ * without force, on the linked points' facets); the shifted dofs belong
+ * to C. */
 enum { FFC_NEWTON_HIST = 64 };
 typedef struct {
     int max_iter;      /* Newton iterations at most (>= 1) */
@@ -759,7 +795,8 @@ typedef struct {
     int iters;         /* Newton iterations (condensed linear solves) */
     int evals;         /* contact evaluations */
     int fallbacks;     /* directions taken from the material tangent */
-    long m;            /* contact dofs of the condensed problem (count) */
+    long m;            /* contact dofs of the condensed problem at the end (count) */
+    long grown;        /* of them, those that joined during the call (count) */
     long support;      /* the largest dense system solved (count) */
     double res;        /* |rho| at the end (force) */
     int nhist;         /* entries of hist */
@@ -777,8 +814,8 @@ ffc_newton_opts ffc_newton_defaults(void);
  * FFC_INFO_NODESCENT, unchanged on an error.  FFC_ERR_EMPTY without a
  * bulk matrix, FFC_ERR_VALUE for a scene with node-to-surface pairs or
  * options out of range, FFC_ERR_CAPACITY when C would hold more than
- * max_dofs (or the bulk's mmax) dofs (*bad = their count; no column is
- * added), FFC_ERR_SINGULAR when K + S or a
+ * max_dofs (or the bulk's mmax) dofs (*bad = their count; the columns
+ * added before stay, u is unchanged), FFC_ERR_SINGULAR when K + S or a
  * condensed system cannot be factorized, FFC_ERR_NONFINITE (*bad = the
  * entry of r or u). */
 int ffc_scene_newton(ffc_scene *s, const double r[], double u[], const ffc_newton_opts *o, ffc_newton_info *info,

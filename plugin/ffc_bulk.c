@@ -46,6 +46,11 @@ struct ffc__bulk {
     long tcap;
     double *Mw, *Gw;           /* [wcap] the dense tangent and G on its support (a x a) */
     long wcap;
+    long nr;                   /* rows R: the dofs the contact evaluation may read (count) */
+    long *rows;                /* [nr] */
+    long *rpos;                /* [n] position in rows, or -1 */
+    double *H;                 /* [nr*ld] the compliance columns of C on the rows R (column-major, leading
+                                  dimension nr; the rows of C in it are G's) */
 };
 
 static void bulk_free_factor(ffc__bulk *b)
@@ -67,6 +72,7 @@ void ffc__bulk_free(ffc__bulk *b)
     free(b->dof); free(b->G); free(b->pos); free(b->nd); free(b->A); free(b->piv);
     free(b->xc); free(b->w); free(b->r); free(b->dx); free(b->t); free(b->kv);
     free(b->Gc); free(b->ti); free(b->tj); free(b->tv); free(b->Mw); free(b->Gw);
+    free(b->rows); free(b->rpos); free(b->H);
     free(b);
 }
 
@@ -178,7 +184,9 @@ static int grow(ffc__bulk *b, long m)
     long *dof = malloc((size_t)ld * sizeof(long)), *piv = malloc((size_t)ld * sizeof(long));
     double *xc = malloc((size_t)ld * sizeof(double));
     double *Gc = malloc((size_t)ld * ld * sizeof(double));
-    if (!G || !A || !dof || !piv || !xc || !Gc) {
+    double *H = b->nr ? realloc(b->H, (size_t)b->nr * ld * sizeof(double)) : b->H;
+    if (H) b->H = H;
+    if (!G || !A || !dof || !piv || !xc || !Gc || (b->nr && !H)) {
         free(G); free(A); free(dof); free(piv); free(xc); free(Gc);
         return FFC_ERR_MEMORY;
     }
@@ -295,6 +303,7 @@ static int add_columns(ffc__bulk *b, long nnew, const long nd[])
         for (long k = 0; k < nb; k++) {
             st = ffc_reduced_add(n, b->ld, b->m, b->dof, b->G, xb + k * n, nd[k0 + k]);
             if (st) return st;
+            for (long r = 0; r < b->nr; r++) b->H[r + b->m * b->nr] = xb[b->rows[r] + k * n];
             b->m++;
         }
     }
@@ -451,29 +460,122 @@ void dgemm_(const char *ta, const char *tb, const int *m, const int *n, const in
             const double *a, const int *lda, const double *b, const int *ldb, const double *beta, double *c,
             const int *ldc);
 
-/* the dofs cand[nc] that are neither Dirichlet rows nor in G yet, as new
- * compliance columns (the first factorization before) */
-static int ensure_columns(ffc__bulk *b, long nc, const long cand[], long cap, long *bad)
+/* The rows R: the dofs rows[nr] the contact evaluation may read.  A set
+ * that is not within the kept one joins it and drops the compliance
+ * columns (they lack the new rows; they are computed again as needed). */
+static int set_rows(ffc__bulk *b, long nr, const long rows[], long *bad)
 {
     const long n = b->n;
+    if (!b->rpos) {
+        if (!(b->rpos = malloc((size_t)n * sizeof(long)))) return FFC_ERR_MEMORY;
+        for (long i = 0; i < n; i++) b->rpos[i] = -1;
+    }
+    long fresh = 0;
+    for (long k = 0; k < nr; k++) {
+        if (rows[k] < 0 || rows[k] >= n) { *bad = k; return FFC_ERR_INDEX; }
+        fresh += b->rpos[rows[k]] < 0;
+    }
+    if (!fresh && (b->nr || !b->m)) return FFC_OK;
+    long *rw = realloc(b->rows, (size_t)(b->nr + fresh + 1) * sizeof(long));
+    if (!rw) return FFC_ERR_MEMORY;
+    b->rows = rw;
+    for (long k = 0; k < nr; k++)
+        if (b->rpos[rows[k]] < 0) { b->rpos[rows[k]] = b->nr; b->rows[b->nr++] = rows[k]; }
+    free(b->H);
+    b->H = b->ld ? malloc((size_t)(b->nr ? b->nr : 1) * b->ld * sizeof(double)) : NULL;
+    b->m = b->mc = 0;
+    b->info.m = 0;
+    return b->ld && !b->H ? FFC_ERR_MEMORY : FFC_OK;
+}
+
+/* the dofs nd[nnew] (free, not in C) join C: their compliance columns;
+ * FFC_ERR_CAPACITY (*bad = the count C would have) beyond cap */
+static int add_to_c(ffc__bulk *b, long nnew, const long nd[], long cap, long *bad)
+{
+    if (!nnew) return FFC_OK;
+    if (b->m + nnew > cap) { *bad = b->m + nnew; return FFC_ERR_CAPACITY; }
+    const int st = add_columns(b, nnew, nd);
+    b->info.m = b->m;
+    return st;
+}
+
+/* The free dofs of cand[nc] (each once), or with whole = 1 every free
+ * dof of their nodes, into b->nd[*nnew] */
+static int free_dofs(ffc__bulk *b, long nc, const long cand[], int whole, long *nnew, long *bad)
+{
+    long c = 0;
+    int st = FFC_OK;
+    for (long k = 0; k < nc && !st; k++) {
+        if (cand[k] < 0 || cand[k] >= b->n) { *bad = k; st = FFC_ERR_INDEX; break; }
+        for (long d = whole ? cand[k] - cand[k] % 3 : cand[k]; d <= (whole ? cand[k] - cand[k] % 3 + 2 : cand[k]); d++) {
+            if (d >= b->n || b->big[d] || b->pos[d] != -1) continue;
+            b->pos[d] = -2;
+            b->nd[c++] = d;
+        }
+    }
+    for (long k = 0; k < c; k++) b->pos[b->nd[k]] = -1;
+    *nnew = st ? 0 : c;
+    return st;
+}
+
+/* The first factorization: K alone; when K is singular (a body that only
+ * contact holds), K + S shifted on the nodes the contact force reaches
+ * (reach[nreach]), else on the linked points' facets (cand[nc]); see
+ * factorize.  FFC_ERR_CAPACITY, no factor kept, when the shift would put
+ * more than cap dofs in C.  The shifted dofs belong to C (their shift is
+ * part of the condensed problem). */
+static int first_factor(ffc__bulk *b, long nreach, const long reach[], long nc, const long cand[], long cap,
+                        long *bad)
+{
+    int st = FFC_OK;
+    if (!b->L) {
+        st = factorize(b, 0, NULL);
+        for (int pass = 0; pass < 2 && st == FFC_ERR_SINGULAR; pass++) {
+            long nset = 0;
+            st = pass ? free_dofs(b, nc, cand, 0, &nset, bad) : free_dofs(b, nreach, reach, 1, &nset, bad);
+            if (st) return st;
+            if (!nset) { st = FFC_ERR_SINGULAR; continue; }
+            if (b->m + nset > cap) { *bad = b->m + nset; return FFC_ERR_CAPACITY; }
+            st = factorize(b, nset, b->nd);
+        }
+        if (st) return st;
+    }
     for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = k;
     long nnew = 0;
-    int st = FFC_OK;
-    for (long k = 0; k < nc; k++) {
-        const long d = cand[k];
-        if (d < 0 || d >= n) { *bad = k; st = FFC_ERR_INDEX; break; }
-        if (b->big[d] || b->pos[d] != -1) continue;
-        b->pos[d] = -2;
-        b->nd[nnew++] = d;
-    }
-    for (long k = 0; k < nnew; k++) b->pos[b->nd[k]] = -1;
+    for (long i = 0; i < b->n; i++)
+        if (b->sh[i] != 0.0 && b->pos[i] == -1) b->nd[nnew++] = i;
     for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = -1;
-    if (st) return st;
-    if (b->m + nnew > cap) { *bad = b->m + nnew; return FFC_ERR_CAPACITY; }
-    if (!b->L && (st = factorize_first(b, nnew, b->nd))) return st;
-    if (nnew && (st = add_columns(b, nnew, b->nd))) return st;
-    b->info.m = b->m;
-    return FFC_OK;
+    return add_to_c(b, nnew, b->nd, cap, bad);
+}
+
+/* the free dofs outside C that the force in b->r or a triplet of the
+ * tangent (b->ti, tj, tv)[nt] (free row and column) reaches, into
+ * b->nd[*nnew]; FFC_ERR_INDEX (*bad = the dof) for one outside the rows */
+static int reached(ffc__bulk *b, long nt, long *nnew, long *bad)
+{
+    long *pos = b->pos, c = 0;
+    int st = FFC_OK;
+    for (long k = 0; k < b->m; k++) pos[b->dof[k]] = k;
+#define REACH(i_)                                                                                                  \
+    do {                                                                                                           \
+        const long d_ = (i_);                                                                                      \
+        if (b->big[d_] || pos[d_] != -1) break;                                                                    \
+        if (b->rpos[d_] < 0) { *bad = d_; st = FFC_ERR_INDEX; break; }                                             \
+        pos[d_] = -2;                                                                                              \
+        b->nd[c++] = d_;                                                                                           \
+    } while (0)
+    for (long i = 0; i < b->n && !st; i++)
+        if (b->r[i] != 0.0) REACH(i);
+    for (long e = 0; e < nt && !st; e++)
+        if (b->tv[e] != 0.0 && !b->big[b->ti[e]] && !b->big[b->tj[e]]) {
+            REACH(b->ti[e]);
+            if (!st) REACH(b->tj[e]);
+        }
+#undef REACH
+    for (long k = 0; k < c; k++) pos[b->nd[k]] = -1;
+    for (long k = 0; k < b->m; k++) pos[b->dof[k]] = -1;
+    *nnew = st ? 0 : c;
+    return st;
 }
 
 /* Gc = the Cholesky factor L of G, extended to the columns added since
@@ -651,15 +753,16 @@ static double dot(long m, const double x[], const double y[])
     return v;
 }
 
-int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn fn, void *ctx, const double r[],
-                     double u[], const ffc_newton_opts *o, ffc_newton_info *info, long *bad)
+int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const long cand[], ffc__contact_fn fn,
+                     void *ctx, const double r[], double u[], const ffc_newton_opts *o, ffc_newton_info *info,
+                     long *bad)
 {
     long dummy;
     if (!bad) bad = &dummy;
     *bad = -1;
-    if (!b || !fn || !r || !u || !o || !info || (nc > 0 && !cand)) return FFC_ERR_NULL;
+    if (!b || !fn || !r || !u || !o || !info || (nc > 0 && !cand) || (nr > 0 && !rows)) return FFC_ERR_NULL;
     memset(info, 0, sizeof *info);
-    if (nc < 0) return FFC_ERR_SIZE;
+    if (nc < 0 || nr < 0) return FFC_ERR_SIZE;
     if (o->max_iter < 1 || o->max_ls < 0 || !(o->ls_tol > 0 && o->ls_tol < 1) || !(o->ftol > 0) ||
         !isfinite(o->ftol) || !(o->frel >= 0) || !isfinite(o->frel) || o->max_dofs < 0 || (o->tangent != FFC_TANGENT_CONSISTENT && o->tangent != FFC_TANGENT_MATERIAL))
         return FFC_ERR_VALUE;
@@ -667,55 +770,102 @@ int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn f
     for (long i = 0; i < n; i++)
         if (!isfinite(r[i]) || !isfinite(u[i])) { *bad = i; return FFC_ERR_NONFINITE; }
     const long cap = o->max_dofs > 0 && o->max_dofs < b->mmax ? o->max_dofs : b->mmax;
-    int st = ensure_columns(b, nc, cand, cap, bad);
-    if (!st) st = factor_g(b);
+    int st = set_rows(b, nr, rows, bad);
     if (st) return st;
-    const long m = b->m;
-    info->m = m;
-    /* m-vectors: y = d_C, z = G^-1 (y - d0_C) (the reaction that holds C at
-     * y: the primary unknown, y = d0_C + G z recomputed from it, so that y
-     * and z never drift apart), rho, dy, dz, gdz = G dz, Fp, rt, q, t, s;
-     * ap, ad */
-    const size_t mm = (size_t)(m > 0 ? m : 1);
-    double *buf = malloc(12 * mm * sizeof(double));
-    long *ibuf = malloc(2 * mm * sizeof(long));
-    if (!buf || !ibuf) { free(buf); free(ibuf); return FFC_ERR_MEMORY; }
-    double *y = buf, *z = y + mm, *rho = z + mm, *dy = rho + mm, *dz = dy + mm, *gdz = dz + mm, *Fp = gdz + mm,
-           *rt = Fp + mm, *q = rt + mm, *tt = q + mm, *ss = tt + mm, *d0c = ss + mm;
-    long *ap = ibuf, *ad = ibuf + mm;
-    double *w = b->w, *d0 = b->dx, *rhs = b->t;
-    const int mi = (int)m, ldi = (int)b->ld, one = 1;
-    const double d1 = 1.0;
     /* the contact force at u: b' = -(r - F_c(u)) on free rows, -r on
-     * Dirichlet rows (into w); d0 = K^-1 b' with the Dirichlet values moved
-     * to the right-hand side */
-    long nt = 0;
+     * Dirichlet rows (into w); the dofs it reaches join C */
+    double *w = b->w, *d0 = b->dx, *rhs = b->t;
+    long nt = 0, nnew = 0;
     double fm = 0.0, fscale = 0.0; /* the contact force scale: its largest at an iteration's start */
     st = contact_eval(b, fn, ctx, u, FFC_TANGENT_NONE, &nt, &fm, bad);
     info->evals++;
     if (!st) {
         for (long i = 0; i < n; i++) w[i] = b->big[i] ? -r[i] : b->r[i] - r[i];
-        lift_dirichlet(b, 0, NULL, NULL, NULL, w, rhs);
-        st = backsolve(b, rhs, d0);
+        st = reached(b, 0, &nnew, bad);
     }
+    long *reach = NULL;
+    if (!st && !b->L) { /* (the force's dofs kept: free_dofs writes b->nd) */
+        reach = malloc((size_t)(nnew + 1) * sizeof(long));
+        if (!reach) st = FFC_ERR_MEMORY;
+        else memcpy(reach, b->nd, (size_t)nnew * sizeof(long));
+    }
+    if (!st) st = first_factor(b, nnew, reach, nc, cand, cap, bad);
+    free(reach);
+    if (!st) st = reached(b, 0, &nnew, bad);
+    if (!st) st = add_to_c(b, nnew, b->nd, cap, bad);
+    if (!st) st = factor_g(b);
+    if (st) return st;
+    /* d0 = K^-1 b' with the Dirichlet values moved to the right-hand side */
+    lift_dirichlet(b, 0, NULL, NULL, NULL, w, rhs);
+    st = backsolve(b, rhs, d0);
+    if (st) return st;
+    long m = b->m;
+    /* C grows up to mm dofs.  m-vectors: y = d_C, z = G^-1 (y - d0_C) (the
+     * reaction that holds C at y: the primary unknown, y = d0_C + G z
+     * recomputed from it, so that y and z never drift apart), rho, dy, dz,
+     * gdz = G dz, Fp, rt, q, t, s, d0_C; ap, ad; on the rows: hz = H z,
+     * hdz = H dz (the displacement of the rows outside C: u + d0 + H z) */
+    const long nrb = b->nr;
+    const size_t mm = (size_t)(m + nrb < cap ? m + nrb : (cap > m ? cap : m)) + 1, mr = (size_t)nrb + 1;
+    double *buf = malloc((12 * mm + 2 * mr) * sizeof(double));
+    long *ibuf = malloc(2 * mm * sizeof(long));
+    if (!buf || !ibuf) { free(buf); free(ibuf); return FFC_ERR_MEMORY; }
+    double *y = buf, *z = y + mm, *rho = z + mm, *dy = rho + mm, *dz = dy + mm, *gdz = dz + mm, *Fp = gdz + mm,
+           *rt = Fp + mm, *q = rt + mm, *tt = q + mm, *ss = tt + mm, *d0c = ss + mm, *hz = d0c + mm, *hdz = hz + mr;
+    long *ap = ibuf, *ad = ibuf + mm;
+    int mi = (int)m, nri = (int)nrb, ldi = (int)b->ld; /* (G's leading dimension grows with C) */
+    const int one = 1;
+    const double d1 = 1.0, d0s = 0.0;
     /* y = d0_C + G z */
 #define Y_OF_Z()                                                                                                   \
     do {                                                                                                           \
-        memcpy(y, d0c, mm * sizeof(double));                                                                       \
+        memcpy(y, d0c, (size_t)m * sizeof(double));                                                                \
         if (m) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, z, &one, &d1, y, &one);                                      \
     } while (0)
-    if (!st) {
-        /* the start: C held at u (y = 0), the interior equilibrated */
-        for (long i = 0; i < n; i++) w[i] = u[i] + (b->big[i] ? d0[i] : 0.0);
-        for (long k = 0; k < m; k++) { d0c[k] = d0[b->dof[k]]; z[k] = -d0c[k]; }
-        g_inverse(b, z);
-        /* y = 0 exactly (d0_C + G z is zero to round-off): the first
-         * evaluation sees u itself, as a Newton step of the full system
-         * would (a point just touching sits on the kink of the law, where
-         * round-off would pick the other side) */
-        for (long k = 0; k < m; k++) y[k] = 0.0;
-    }
-    int status = FFC_INFO_MAXIT;
+    /* hz = H z */
+#define HZ()                                                                                                       \
+    do {                                                                                                           \
+        if (m && nrb) dgemv_("N", &nri, &mi, &d1, b->H, &nri, z, &one, &d0s, hz, &one);                            \
+        else for (long k = 0; k < nrb; k++) hz[k] = 0.0;                                                           \
+    } while (0)
+    /* w at z + a dz: the rows u + d0 + H (z + a dz), C's dofs u + yc */
+#define W_AT(a_, yc_)                                                                                              \
+    do {                                                                                                           \
+        for (long k = 0; k < nrb; k++) w[b->rows[k]] = u[b->rows[k]] + d0[b->rows[k]] + hz[k] + (a_) * hdz[k];     \
+        for (long k = 0; k < m; k++) w[b->dof[k]] = u[b->dof[k]] + (yc_)[k];                                       \
+    } while (0)
+    /* the dofs b->nd[nnew] join C at the state z: d0_C, z = 0 and y there */
+#define JOIN()                                                                                                     \
+    do {                                                                                                           \
+        const long m0_ = m;                                                                                        \
+        st = add_to_c(b, nnew, b->nd, cap, bad);                                                                   \
+        if (st) break;                                                                                             \
+        m = b->m;                                                                                                  \
+        mi = (int)m;                                                                                               \
+        ldi = (int)b->ld;                                                                                          \
+        for (long k = m0_; k < m; k++) {                                                                           \
+            d0c[k] = d0[b->dof[k]];                                                                                \
+            z[k] = 0.0;                                                                                            \
+            y[k] = d0c[k] + dot(m0_, b->G + k * b->ld, z); /* G symmetric: row k = column k */                     \
+        }                                                                                                          \
+        info->grown += nnew;                                                                                       \
+    } while (0)
+    /* the start: C held at u (y = 0), the rest equilibrated.  y = 0
+     * exactly (d0_C + G z is zero to round-off): the first evaluation sees
+     * u itself on C, as a Newton step of the full system would (a point just
+     * touching sits on the kink of the law, where round-off would pick the
+     * other side) */
+#define START()                                                                                                    \
+    do {                                                                                                           \
+        for (long k = 0; k < m; k++) { d0c[k] = d0[b->dof[k]]; z[k] = -d0c[k]; y[k] = 0.0; }                       \
+        g_inverse(b, z);                                                                                           \
+        HZ();                                                                                                      \
+        W_AT(0.0, y);                                                                                              \
+    } while (0)
+    for (long i = 0; i < n; i++) w[i] = u[i] + (b->big[i] ? d0[i] : 0.0);
+    for (long k = 0; k < nrb; k++) hdz[k] = 0.0;
+    START();
+    int status = FFC_INFO_MAXIT, restart = 0, starting = 1;
     double last = 1.0, rprev = HUGE_VAL;
     int stall = 0;
     for (int it = 0; !st; it++) {
@@ -723,28 +873,47 @@ int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn f
         st = contact_eval(b, fn, ctx, w, tan, &nt, &fm, bad);
         fscale = fmax(fscale, fm);
         info->evals++;
+        if (!st) st = reached(b, tan ? nt : 0, &nnew, bad);
+        if (!st && nnew && starting) {
+            /* the start reaches dofs outside C (at the first call of a load
+             * step the rest moves by the whole increment): they join C and
+             * are held at u too */
+            JOIN();
+            if (!st) st = factor_g(b);
+            if (st) break;
+            START();
+            it--;
+            continue;
+        }
+        if (!st && nnew) JOIN();
         if (!st) st = force_c(b, y, Fp, bad);
         if (st) break;
         for (long k = 0; k < m; k++) rho[k] = z[k] + Fp[k];
         const double rn = sqrt(dot(m, rho, rho));
         info->res = rn;
-        if (info->nhist < FFC_NEWTON_HIST) info->hist[info->nhist++] = rn;
         const double tol = fmax(o->ftol, o->frel * fscale);
         /* converged: the force test; or the round-off floor within 1e3 of
          * it: a full step that changed nothing, or two iterations in a row
          * that did not halve the residual (the noise of rho is about
-         * eps |Kc G| |z|: with a stiff penalty it lies above a tight tol) */
-        stall = rn < 0.5 * rprev ? 0 : stall + 1;
-        rprev = rn;
+         * eps |Kc G| |z|: with a stiff penalty it lies above a tight tol).
+         * An iteration restarted because C grew in its line search is the
+         * same state: not counted */
+        if (!restart) {
+            if (info->nhist < FFC_NEWTON_HIST) info->hist[info->nhist++] = rn;
+            stall = rn < 0.5 * rprev ? 0 : stall + 1;
+            rprev = rn;
+        }
+        restart = 0;
         if (rn <= tol || ((last <= 1e-14 || stall >= 2) && rn <= 1e3 * tol)) { status = FFC_OK; break; }
         if (it == o->max_iter) break;
         long na = 0;
+        starting = 0;
         st = direction(b, nt, rho, dy, dz, ap, ad, q, tt, ss, &na, bad);
         if (st) break;
         if (na > info->support) info->support = na;
         /* the step of y that the step of z makes: G dz (= dy to the accuracy
          * of the dense solve) */
-        if (m) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, dz, &one, &(double){0.0}, gdz, &one);
+        if (m) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, dz, &one, &d0s, gdz, &one);
         double g0 = dot(m, rho, gdz);
         if (!(g0 < 0) && o->tangent == FFC_TANGENT_CONSISTENT) {
             /* the consistent tangent is indefinite here: the material one's direction */
@@ -754,21 +923,22 @@ int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn f
             if (st) break;
             if (na > info->support) info->support = na;
             info->fallbacks++;
-            if (m) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, dz, &one, &(double){0.0}, gdz, &one);
+            if (m) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, dz, &one, &d0s, gdz, &one);
             g0 = dot(m, rho, gdz);
         }
         if (!(g0 < 0)) { status = FFC_INFO_NODESCENT; break; }
-        info->iters++;
-        /* rho at z + a dz into rt; its g = rt . gdz */
+        if (m && nrb) dgemv_("N", &nri, &mi, &d1, b->H, &nri, dz, &one, &d0s, hdz, &one);
+        /* rho at z + a dz into rt; its g = rt . gdz; a force that reaches
+         * a dof outside C: it joins C and the iteration restarts */
 #define TRIAL(a_)                                                                                                  \
     do {                                                                                                           \
-        for (long k = 0; k < m; k++) {                                                                             \
-            rt[k] = y[k] + (a_) * gdz[k];                                                                          \
-            w[b->dof[k]] = u[b->dof[k]] + rt[k];                                                                   \
-        }                                                                                                          \
+        for (long k = 0; k < m; k++) rt[k] = y[k] + (a_) * gdz[k];                                                 \
+        W_AT(a_, rt);                                                                                              \
         st = contact_eval(b, fn, ctx, w, FFC_TANGENT_NONE, &nt, &fm, bad);                                         \
         info->evals++;                                                                                             \
-        if (!st) {                                                                                                 \
+        if (!st) st = reached(b, 0, &nnew, bad);                                                                   \
+        if (!st && nnew) { JOIN(); restart = 1; }                                                                  \
+        if (!st && !restart) {                                                                                     \
             st = force_c(b, rt, Fp, bad);                                                                          \
             for (long k = 0; k < m; k++) rt[k] = z[k] + (a_) * dz[k] + Fp[k];                                      \
         }                                                                                                          \
@@ -782,7 +952,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn f
             for (int ls = 0; ls < o->max_ls; ls++) {
                 TRIAL(a);
                 at = a;
-                if (st) break;
+                if (st || restart) break;
                 const double g = dot(m, rt, gdz);
                 if (fabs(g) <= o->ls_tol * fabs(g0) || (g < 0 && a == ahi)) break;
                 if (g < 0) {
@@ -798,25 +968,39 @@ int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn f
                 a = fmax(alo + 0.05 * (ahi - alo), fmin(an, ahi - 0.05 * (ahi - alo)));
             }
             /* a step that makes |rho| ten times larger is halved */
-            for (int ls = 0; ls < o->max_ls && !st; ls++) {
+            for (int ls = 0; ls < o->max_ls && !st && !restart; ls++) {
                 if (a != at) TRIAL(a);
-                if (st || sqrt(dot(m, rt, rt)) <= 10 * rn) break;
+                if (st || restart || sqrt(dot(m, rt, rt)) <= 10 * rn) break;
                 a *= 0.5;
             }
-            if (st) break;
         }
 #undef TRIAL
+        if (st) break;
+        if (restart) { /* the same state, C grown: w as before, the iteration again */
+            HZ();
+            W_AT(0.0, y);
+            it--;
+            continue;
+        }
+        info->iters++;
         for (long k = 0; k < m; k++) z[k] += a * dz[k];
         Y_OF_Z();
+        HZ();
+        for (long k = 0; k < nrb; k++) hdz[k] = 0.0;
+        W_AT(0.0, y);
         double dn = 0.0, yn = 0.0;
         for (long k = 0; k < m; k++) {
-            w[b->dof[k]] = u[b->dof[k]] + y[k];
             dn += a * a * gdz[k] * gdz[k];
             yn += w[b->dof[k]] * w[b->dof[k]];
         }
         last = a == 1.0 ? sqrt(dn / fmax(yn, 1e-300)) : 1.0;
     }
 #undef Y_OF_Z
+#undef HZ
+#undef W_AT
+#undef JOIN
+#undef START
+    info->m = m;
     if (!st) {
         /* d = d0 + K^-1 P_C^T z: the state whose residual is rho (d_C = y;
          * not d0 - K^-1 P_C^T F_c, which moves C by G rho and the contact
@@ -832,4 +1016,225 @@ int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn f
     free(ibuf);
     b->info.solves++;
     return st ? st : status;
+}
+
+/* ------------------------------------ the node-to-surface saddle point */
+
+void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
+void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a, const int *lda, const int *ipiv,
+             double *b, const int *ldb, int *info);
+
+/* The rows (Bi, Bj, Bv, Fv)[nt] of nr constraints (see ffc__bulk_saddle)
+ * and the dense system of one saddle solve: S = Cm - B G Bf' (nr x nr),
+ * or, with shifted dofs in C, the coupled [I - G S_C, G Bf'; B, Cm]
+ * (m + nr), LU-factored in A (leading dimension na). */
+typedef struct {
+    long nt, nr;
+    const long *Bi, *Bj;
+    const double *Bv, *Fv;
+    int coupled;      /* 1: the coupled system (a shift in C) */
+    long na;          /* its order */
+    double *A;        /* [na*na] its LU factors */
+    int *piv;         /* [na] */
+    double *W;        /* [m*nr] G Bf' (Schur form) */
+    double *v;        /* [na] work */
+} saddle_sys;
+
+/* x = K'^-1 (rhs lifted), m: one saddle solve with the factored system
+ * (rhs[n] the force rows, c[nr] the constraint rows) */
+static int saddle_once(ffc__bulk *b, const saddle_sys *S, const double rhs[], const double c[], double x[],
+                       double mult[])
+{
+    const long n = b->n, m = b->m, nr = S->nr;
+    double *t = b->t, *x0 = b->dx;
+    lift_dirichlet(b, 0, NULL, NULL, NULL, rhs, t);
+    int st = backsolve(b, t, x0);
+    if (st) return st;
+    double *v = S->v;
+    const int nai = (int)S->na, one = 1;
+    int info = 0;
+    if (!S->coupled) {
+        /* S mult = c - B x0 */
+        for (long r = 0; r < nr; r++) v[r] = c[r];
+        for (long e = 0; e < S->nt; e++)
+            if (S->Bj[e] < n && S->Bv[e] != 0.0) v[S->Bi[e]] -= S->Bv[e] * x0[S->Bj[e]];
+        if (nr) dgetrs_("N", &nai, &one, S->A, &nai, S->piv, v, &nai, &info);
+        if (info) return FFC_ERR_SINGULAR;
+        memcpy(mult, v, (size_t)nr * sizeof(double));
+    } else {
+        /* [I - G S_C, G Bf'; B, Cm] [y; mult] = [x0_C; c] */
+        for (long k = 0; k < m; k++) v[k] = x0[b->dof[k]];
+        for (long r = 0; r < nr; r++) v[m + r] = c[r];
+        dgetrs_("N", &nai, &one, S->A, &nai, S->piv, v, &nai, &info);
+        if (info) return FFC_ERR_SINGULAR;
+        memcpy(mult, v + m, (size_t)nr * sizeof(double));
+    }
+    /* x = x0 + K'^-1 (S_C y - Bf' mult) */
+    memset(t, 0, (size_t)n * sizeof(double));
+    for (long e = 0; e < S->nt; e++)
+        if (S->Bj[e] < n && S->Fv[e] != 0.0 && !b->big[S->Bj[e]]) t[S->Bj[e]] -= S->Fv[e] * mult[S->Bi[e]];
+    if (S->coupled)
+        for (long k = 0; k < m; k++) t[b->dof[k]] += b->sh[b->dof[k]] * v[k];
+    st = backsolve(b, t, x);
+    if (st) return st;
+    for (long i = 0; i < n; i++) x[i] += x0[i];
+    return FFC_OK;
+}
+
+/* the residuals of the saddle system at (x, mult): ru = rhs - K x - Bf'
+ * mult (K with its tgv rows), rc = c - B x - Cm mult; their relative size:
+ * the free rows and the constraint rows against |rhs_free - K_fd g| + |c|
+ * (the right-hand side once the Dirichlet values g are lifted: fs), not
+ * against |K| |x| (which would pass the huge x of a body that nothing
+ * holds); a Dirichlet row's residual / diagonal against |x|_inf */
+static double saddle_residual(const ffc__bulk *b, const saddle_sys *S, const double rhs[], const double c[],
+                              double fs, const double x[], const double mult[], double ru[], double rc[])
+{
+    const long n = b->n;
+    residual(b, 0, NULL, NULL, NULL, rhs, x, ru);
+    double cs = 0.0, rs = 0.0, rd = 0.0, xinf = 0.0;
+    for (long r = 0; r < S->nr; r++) { rc[r] = c[r]; cs += c[r] * c[r]; }
+    for (long e = 0; e < S->nt; e++) {
+        const long i = S->Bi[e], j = S->Bj[e];
+        if (j < n) {
+            if (!b->big[j]) ru[j] -= S->Fv[e] * mult[i];
+            rc[i] -= S->Bv[e] * x[j];
+        } else rc[i] -= S->Bv[e] * mult[j - n];
+    }
+    for (long r = 0; r < S->nr; r++) rs += rc[r] * rc[r];
+    for (long i = 0; i < n; i++) {
+        xinf = fmax(xinf, fabs(x[i]));
+        if (b->big[i]) rd = fmax(rd, fabs(ru[i]) / b->diag[i]);
+        else rs += ru[i] * ru[i];
+    }
+    return fmax(sqrt(rs) / (fs + sqrt(cs) + 1e-300), rd / (xinf + 1e-300));
+}
+
+int ffc__bulk_saddle(ffc__bulk *b, long nt, const long Bi[], const long Bj[], const double Bv[], const double Fv[],
+                     long nr, const double c[], const double rhs[], double x[], double mult[], long *bad)
+{
+    long dummy;
+    if (!bad) bad = &dummy;
+    *bad = -1;
+    if (!b || !rhs || !x || (nt > 0 && (!Bi || !Bj || !Bv || !Fv)) || (nr > 0 && (!c || !mult))) return FFC_ERR_NULL;
+    if (nt < 0 || nr < 0) return FFC_ERR_SIZE;
+    const long n = b->n;
+    for (long e = 0; e < nt; e++) {
+        if (Bi[e] < 0 || Bi[e] >= nr || Bj[e] < 0 || Bj[e] >= n + nr) { *bad = e; return FFC_ERR_INDEX; }
+        if (!isfinite(Bv[e]) || !isfinite(Fv[e])) { *bad = e; return FFC_ERR_NONFINITE; }
+    }
+    for (long i = 0; i < n; i++)
+        if (!isfinite(rhs[i])) { *bad = i; return FFC_ERR_NONFINITE; }
+    for (long r = 0; r < nr; r++)
+        if (!isfinite(c[r])) { *bad = n + r; return FFC_ERR_NONFINITE; }
+    /* C: the free dofs of the rows' columns, and the shifted dofs */
+    for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = k;
+    long nnew = 0;
+    for (long e = 0; e < nt; e++) {
+        const long j = Bj[e];
+        if (j >= n || b->big[j] || (Bv[e] == 0.0 && Fv[e] == 0.0) || b->pos[j] != -1) continue;
+        b->pos[j] = -2;
+        b->nd[nnew++] = j;
+    }
+    for (long k = 0; k < nnew; k++) b->pos[b->nd[k]] = -1;
+    for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = -1;
+    if (b->m + nnew > b->mmax) { *bad = b->m + nnew; return FFC_ERR_CAPACITY; }
+    int st = FFC_OK;
+    if (!b->L && (st = factorize_first(b, nnew, b->nd))) return st;
+    if (nnew && (st = add_columns(b, nnew, b->nd))) return st;
+    for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = k;
+    nnew = 0;
+    for (long i = 0; i < n; i++)
+        if (b->sh[i] != 0.0 && b->pos[i] == -1) b->nd[nnew++] = i;
+    int coupled = 0;
+    for (long i = 0; i < n; i++) coupled |= b->sh[i] != 0.0;
+    for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = -1;
+    if (b->m + nnew > b->mmax) { *bad = b->m + nnew; return FFC_ERR_CAPACITY; }
+    if (nnew && (st = add_columns(b, nnew, b->nd))) return st;
+    b->info.m = b->m;
+    b->info.solves++;
+    const long m = b->m, ld = b->ld, na = coupled ? m + nr : nr;
+    if (na > 46340) return FFC_ERR_SIZE; /* (na^2 within an int for LAPACK) */
+    saddle_sys S = {nt, nr, Bi, Bj, Bv, Fv, coupled, na, NULL, NULL, NULL, NULL};
+    S.A = malloc((size_t)(na * na + 1) * sizeof(double));
+    S.piv = malloc((size_t)(na + 1) * sizeof(int));
+    S.W = coupled ? NULL : malloc((size_t)(m * nr + 1) * sizeof(double));
+    S.v = malloc((size_t)(na + 1) * sizeof(double));
+    double *ru = malloc((size_t)(n + nr + 1) * sizeof(double)), *dm = malloc((size_t)(nr + 1) * sizeof(double));
+    if (!S.A || !S.piv || (!coupled && !S.W) || !S.v || !ru || !dm) st = FFC_ERR_MEMORY;
+    for (long k = 0; k < m; k++) b->pos[b->dof[k]] = k;
+    if (!st && !coupled) {
+        /* W = G Bf' (m x nr), column by row: G's column of each entry's dof */
+        double *W = S.W, *A = S.A;
+        memset(W, 0, (size_t)(m * nr) * sizeof(double));
+        for (long e = 0; e < nt; e++) {
+            const long j = Bj[e];
+            if (j >= n || Fv[e] == 0.0 || b->big[j]) continue;
+            const double *g = b->G + b->pos[j] * ld, f = Fv[e];
+            double *w = W + Bi[e] * m;
+            for (long k = 0; k < m; k++) w[k] += f * g[k];
+        }
+        /* S = Cm - B W */
+        memset(A, 0, (size_t)(nr * nr) * sizeof(double));
+        for (long e = 0; e < nt; e++) {
+            const long i = Bi[e], j = Bj[e];
+            if (j >= n) { A[i + (j - n) * nr] += Bv[e]; continue; }
+            if (Bv[e] == 0.0 || b->big[j]) continue;
+            const long pj = b->pos[j];
+            const double v = Bv[e];
+            for (long r = 0; r < nr; r++) A[i + r * nr] -= v * W[pj + r * m];
+        }
+    } else if (!st) {
+        /* [I - G S_C, G Bf'; B, Cm] */
+        double *A = S.A;
+        memset(A, 0, (size_t)(na * na) * sizeof(double));
+        for (long k = 0; k < m; k++) {
+            const double sk = b->sh[b->dof[k]];
+            A[k + k * na] = 1.0;
+            if (sk != 0.0)
+                for (long r = 0; r < m; r++) A[r + k * na] -= b->G[r + k * ld] * sk;
+        }
+        for (long e = 0; e < nt; e++) {
+            const long i = Bi[e], j = Bj[e];
+            if (j >= n) { A[m + i + (m + j - n) * na] += Bv[e]; continue; }
+            if (b->big[j]) continue;
+            const long pj = b->pos[j];
+            if (Fv[e] != 0.0)
+                for (long r = 0; r < m; r++) A[r + (m + i) * na] += b->G[r + pj * ld] * Fv[e];
+            A[m + i + pj * na] += Bv[e];
+        }
+    }
+    for (long k = 0; k < m; k++) b->pos[b->dof[k]] = -1;
+    if (!st && na > 0) {
+        const int nai = (int)na;
+        int info = 0;
+        dgetrf_(&nai, &nai, S.A, &nai, S.piv, &info);
+        if (info) st = FFC_ERR_SINGULAR;
+    }
+    /* the scale of the residual test: the free rows of the lifted rhs */
+    double fs = 0.0;
+    lift_dirichlet(b, 0, NULL, NULL, NULL, rhs, b->t);
+    for (long i = 0; i < n; i++)
+        if (!b->big[i]) fs += b->t[i] * b->t[i];
+    fs = sqrt(fs);
+    if (!st) st = saddle_once(b, &S, rhs, c, x, mult);
+    /* iterative refinement: at most two corrections, while they help */
+    double e = 0.0;
+    if (!st) e = saddle_residual(b, &S, rhs, c, fs, x, mult, ru, ru + n);
+    for (int k = 0; !st && k < 2 && e > 1e-13; k++) {
+        double *dx = b->r; /* (saddle_once uses t, dx, w) */
+        memcpy(b->w, ru, (size_t)n * sizeof(double));
+        st = saddle_once(b, &S, b->w, ru + n, dx, dm);
+        if (st) break;
+        for (long i = 0; i < n; i++) x[i] += dx[i];
+        for (long r = 0; r < nr; r++) mult[r] += dm[r];
+        const double e2 = saddle_residual(b, &S, rhs, c, fs, x, mult, ru, ru + n);
+        b->info.refinements++;
+        if (!(e2 < 0.5 * e)) { e = e2; break; }
+        e = e2;
+    }
+    b->info.residual = e;
+    free(S.A); free(S.piv); free(S.W); free(S.v); free(ru); free(dm);
+    if (!st && !(e <= 1e-6)) st = FFC_ERR_SINGULAR;
+    return st;
 }

@@ -24,6 +24,12 @@ int ffc__bulk_solve(ffc__bulk *b, long nt, const long Ti[], const long Tj[], con
                     double x[], long *bad);
 void ffc__bulk_info(const ffc__bulk *b, ffc_solve_info *info);
 
+/* The node-to-surface saddle point [K Bf'; B Cm] [x; mult] = [rhs; c]
+ * (see ffc_scene_nts_solve): rows (Bi, Bj, Bv, Fv)[nt] of nr constraints
+ * as ffc_nts_rows writes them. */
+int ffc__bulk_saddle(ffc__bulk *b, long nt, const long Bi[], const long Bj[], const double Bv[], const double Fv[],
+                     long nr, const double c[], const double rhs[], double x[], double mult[], long *bad);
+
 /* The contact force of the scene at u added into R[n] and, unless tangent
  * is FFC_TANGENT_NONE, its tangent as triplets (ffc_scene_assemble's
  * contract: FFC_ERR_CAPACITY with the count needed in *nt); *fmag the
@@ -33,8 +39,11 @@ typedef int (*ffc__contact_fn)(void *ctx, const double u[], int tangent, double 
                                double Tv[], long *nt, double *fmag, long *bad);
 
 /* Newton's method on the condensed contact problem (see ffc_scene_newton);
- * cand[nc] the dofs the contact force may touch (Dirichlet ones skipped). */
-int ffc__bulk_newton(ffc__bulk *b, long nc, const long cand[], ffc__contact_fn fn, void *ctx, const double r[],
-                     double u[], const ffc_newton_opts *o, ffc_newton_info *info, long *bad);
+ * rows[nr] the dofs the contact evaluation may read or load (its force
+ * on another dof is FFC_ERR_INDEX), cand[nc] those of the linked points
+ * (a singular K is shifted on them; Dirichlet ones skipped). */
+int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const long cand[], ffc__contact_fn fn,
+                     void *ctx, const double r[], double u[], const ffc_newton_opts *o, ffc_newton_info *info,
+                     long *bad);
 
 #endif

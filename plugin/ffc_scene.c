@@ -928,6 +928,33 @@ int ffc_scene_nts_rows(ffc_scene *s, const double u[], const double fixed[], lon
     return over ? FFC_ERR_CAPACITY : FFC_OK;
 }
 
+int ffc_scene_nts_solve(ffc_scene *s, const double u[], const double fixed[], const double rhs[], double x[],
+                        long mcap, double m[], long *nrows, long *bad)
+{
+    long dummy;
+    if (!bad) bad = &dummy;
+    *bad = -1;
+    if (!s || !u || !fixed || !rhs || !x || !nrows || (mcap > 0 && !m)) return FFC_ERR_NULL;
+    if (mcap < 0) return FFC_ERR_SIZE;
+    if (!s->bulk) return FFC_ERR_EMPTY;
+    const long n = 3 * s->nv;
+    for (long i = 0; i < n; i++)
+        if (!isfinite(rhs[i])) { *bad = i; return FFC_ERR_NONFINITE; }
+    long nt = 0, nr = 0;
+    int st = ffc_scene_nts_rows(s, u, fixed, 0, NULL, NULL, NULL, NULL, 0, NULL, &nt, &nr, bad);
+    if (st && st != FFC_ERR_CAPACITY) return st;
+    *nrows = nr;
+    if (nr > mcap) return FFC_ERR_CAPACITY;
+    long *Bi = malloc((size_t)(nt + 1) * sizeof(long)), *Bj = malloc((size_t)(nt + 1) * sizeof(long));
+    double *Bv = malloc((size_t)(nt + 1) * sizeof(double)), *Fv = malloc((size_t)(nt + 1) * sizeof(double));
+    double *c = malloc((size_t)(nr + 1) * sizeof(double));
+    if (!Bi || !Bj || !Bv || !Fv || !c) st = FFC_ERR_MEMORY;
+    else st = ffc_scene_nts_rows(s, u, fixed, nt, Bi, Bj, Bv, Fv, nr, c, &nt, &nr, bad);
+    if (!st) st = ffc__bulk_saddle(s->bulk, nt, Bi, Bj, Bv, Fv, nr, c, rhs, x, m, bad);
+    free(Bi); free(Bj); free(Bv); free(Fv); free(c);
+    return st;
+}
+
 int ffc_scene_nts_update(ffc_scene *s, const double u[], long nrows, const double m[], long *changes, long *bad)
 {
     long dummy;
@@ -1014,17 +1041,19 @@ int ffc_scene_newton(ffc_scene *s, const double r[], double u[], const ffc_newto
     for (int k = 0; k < s->np; k++)
         if (s->p[k].o.method == FFC_METHOD_NTS) { *bad = k; return FFC_ERR_VALUE; }
     const long n = 3 * s->nv;
-    /* C: the dofs of every linked point's slave and master facets */
+    /* the rows: the dofs of every facet of the pairs (the contact
+     * evaluation reads and loads no other); cand: those of every linked
+     * point's slave and master facets (the shift of a singular K) */
     unsigned char *mark = calloc((size_t)n, 1);
-    long *cand = malloc((size_t)n * sizeof(long));
+    long *cand = malloc((size_t)n * sizeof(long)), *rows = malloc((size_t)n * sizeof(long));
     double *u0 = NULL, *v0 = NULL;
     if (s->fx.dynamic) {
         u0 = malloc((size_t)n * sizeof(double));
         v0 = malloc((size_t)n * sizeof(double));
     }
     int st = FFC_OK;
-    if (!mark || !cand || (s->fx.dynamic && (!u0 || !v0))) st = FFC_ERR_MEMORY;
-    long nc = 0;
+    if (!mark || !cand || !rows || (s->fx.dynamic && (!u0 || !v0))) st = FFC_ERR_MEMORY;
+    long nc = 0, nr = 0;
     for (int k = 0; k < s->np && !st; k++) {
         const scene_pair *p = &s->p[k];
         for (long l = 0; l < p->nl; l++) {
@@ -1040,18 +1069,30 @@ int ffc_scene_newton(ffc_scene *s, const double r[], double u[], const ffc_newto
             }
         }
     }
+    for (int k = 0; k < s->np && !st; k++) {
+        const scene_pair *p = &s->p[k];
+        for (int side = 0; side < 2; side++) {
+            const long nf = side ? p->nfm : p->nfs, *F = side ? p->Fm : p->Fs;
+            for (long f = 0; f < nf * s->nper; f++)
+                for (int c = 0; c < 3; c++) {
+                    const long d = 3 * F[f] + c;
+                    if (mark[d] != 2) { mark[d] = 2; rows[nr++] = d; }
+                }
+        }
+    }
     if (!st) {
         if (v0) {
             memcpy(u0, u, (size_t)n * sizeof(double));
             memcpy(v0, s->v, (size_t)n * sizeof(double));
         }
         newton_ctx c = {s, u0, v0};
-        st = ffc__bulk_newton(s->bulk, nc, cand, newton_contact, &c, r, u, o, info, bad);
+        st = ffc__bulk_newton(s->bulk, nr, rows, nc, cand, newton_contact, &c, r, u, o, info, bad);
         if (v0) /* the velocities of the displacement returned */
             for (long i = 0; i < n; i++) s->v[i] = v0[i] + s->dvdu * (st < 0 ? 0.0 : u[i] - u0[i]);
     }
     free(mark);
     free(cand);
+    free(rows);
     free(u0);
     free(v0);
     return st;

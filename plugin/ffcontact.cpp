@@ -1529,6 +1529,43 @@ long sceneRows(const Named &, FFScene *const &C, KN<double> *const &u, KN<double
     return nr;
 }
 
+// ffcNTSSolve(C, u, fixed, f, x, m): the node-to-surface saddle point of
+// the rows at u, [K Bf'; B Cm] [x; m] = [f; c], solved on the factored
+// bulk (ffcBulk): x and m (resized to the rows). Returns 0, 1 when the
+// system is singular or the solve inaccurate, 2 when the rows touch more
+// contact dofs than the bulk takes (the caller's fallback: ffcRows and a
+// sparse solve).
+long sceneNTSSolve(const Named &, FFScene *const &C, KN<double> *const &u, KN<double> *const &fixed,
+                   KN<double> *const &f, KN<double> *const &x, KN<double> *const &m)
+{
+    const char *fn = "ffcNTSSolve";
+    SceneData &d = need_scene(fn, C);
+    const double *pu = need_scene_u(fn, d, u);
+    const double *pfix = need_scene_u(fn, d, fixed, "fixed");
+    const double *pf = need_scene_u(fn, d, f, "f");
+    if (!x) fail(fn, "argument 'x': array is not defined");
+    if (!m) fail(fn, "argument 'm': array is not defined");
+    need_not_inverted(fn, d, pu);
+    const long n = 3 * d.nn;
+    std::vector<double> xv(n), mv(1);
+    long nr = 0, bad = -1;
+    int st = ffc_scene_nts_solve(d.s, pu, pfix, pf, xv.data(), 0, nullptr, &nr, &bad);
+    if (st == FFC_ERR_CAPACITY && nr > 0) {
+        mv.resize(nr);
+        st = ffc_scene_nts_solve(d.s, pu, pfix, pf, xv.data(), nr, mv.data(), &nr, &bad);
+    }
+    if (st == FFC_ERR_EMPTY) fail(fn, "argument 'C': no bulk matrix yet (ffcBulk(C, K) first)");
+    need_nts_scale(fn, d, st, bad);
+    if (st == FFC_ERR_SINGULAR) return 1;
+    if (st == FFC_ERR_CAPACITY) return 2;
+    if (st) scene_error(fn, st, bad, "the node-to-surface solve");
+    x->resize(n);
+    for (long i = 0; i < n; i++) (*x)[i] = xv[i];
+    m->resize(nr);
+    for (long r = 0; r < nr; r++) (*m)[r] = mv[r];
+    return 0;
+}
+
 long sceneUpdate(const Named &, FFScene *const &C, KN<double> *const &u, KN<double> *const &m)
 {
     const char *fn = "ffcUpdate";
@@ -1587,6 +1624,7 @@ void init_scene()
     typedef Matrice_Creuse<double> *M;
     Global.Add("ffcBulk", "(", named<long, S, M>("ffcBulk", bulk_names, 1, sceneBulk));
     Global.Add("ffcSolve", "(", named<long, S, M, V, V>("ffcSolve", nullptr, 0, sceneSolve));
+    Global.Add("ffcNTSSolve", "(", named<long, S, V, V, V, V, V>("ffcNTSSolve", nullptr, 0, sceneNTSSolve));
     Global.Add("ffcNewton", "(", named<long, S, V, V, V>("ffcNewton", newton_names, 10, sceneNewton));
     Global.Add("ffcSolverStat", "(", named<double, S, string *>("ffcSolverStat", nullptr, 0, sceneSolverStat));
     Global.Add("ffcNTSStep", "(", named<long, S>("ffcNTSStep", nullptr, 0, sceneNtsStep));

@@ -19,6 +19,9 @@ static const double D = 2e-3, EPS = 2e3, KG = 100.0, KS = 300.0, TGV = 1e30;
 
 
 static double XSHIFT = 0.0; /* the slave square's offset along x */
+static double ZSLAVE = -D;  /* the slave square's height (-D: penetrating by D) */
+static double KXZ = 0.0;    /* a coupling of the x and z dofs of each slave node (< its ground springs) */
+static int METHOD = FFC_METHOD_AL; /* the pair's method */
 
 /* a spring KS between dofs i and j: four triplets at *t */
 static void spring(long i, long j, long Ti[], long Tj[], double Tv[], long *t)
@@ -31,7 +34,7 @@ static void spring(long i, long j, long Ti[], long Tj[], double Tv[], long *t)
 static ffc_scene *make(double mu, double kgs, long *nt, long Ti[], long Tj[], double Tv[], double Kd[N * N])
 {
     double X[3 * NV];
-    test_unit_square(-D, X, 0);
+    test_unit_square(ZSLAVE, X, 0);
     for (int a = 0; a < 4; a++) X[3 * a] += XSHIFT;
     test_unit_square(0.0, X, 4);
     test_unit_square(-1.0, X, 8);
@@ -45,6 +48,7 @@ static ffc_scene *make(double mu, double kgs, long *nt, long Ti[], long Tj[], do
     o.eps_t = EPS;
     o.mu = mu;
     o.qdeg = 2;
+    o.method = METHOD;
     assert_int_equal(ffc_scene_add_pair(s, 2, Fs, 2, Fm, &o, &bad), 0);
     long t = 0;
     for (int i = 0; i < NV; i++)
@@ -57,6 +61,10 @@ static ffc_scene *make(double mu, double kgs, long *nt, long Ti[], long Tj[], do
         for (int a = 0; a < 4; a++)
             for (int b = a + 1; b < 4; b++)
                 for (int c = 0; c < 3; c++) spring(3 * (4 * sq + a) + c, 3 * (4 * sq + b) + c, Ti, Tj, Tv, &t);
+    for (int a = 0; a < 4 && KXZ != 0.0; a++) { /* x-z coupling of the slave nodes */
+        Ti[t] = 3 * a; Tj[t] = 3 * a + 2; Tv[t++] = KXZ;
+        Ti[t] = 3 * a + 2; Tj[t] = 3 * a; Tv[t++] = KXZ;
+    }
     for (int a = 0; a < 4; a++) /* master and third square tied */
         for (int c = 0; c < 3; c++) spring(3 * (4 + a) + c, 3 * (8 + a) + c, Ti, Tj, Tv, &t);
     *nt = t;
@@ -66,7 +74,7 @@ static ffc_scene *make(double mu, double kgs, long *nt, long Ti[], long Tj[], do
     long linked = 0;
     double u0[N] = {0};
     assert_int_equal(ffc_scene_search(s, u0, &linked, &bad), FFC_OK);
-    assert_true(linked > 0);
+    assert_true(linked > 0 || METHOD == FFC_METHOD_NTS); /* (node-to-surface pairs locate their nodes instead) */
     return s;
 }
 
@@ -268,6 +276,148 @@ static void test_growth(void **state)
     ffc_scene_free(s);
 }
 
+/* The contact closes during the call: the slave square starts 2e-3 above
+ * the master, with no contact force, and a load presses it down by about
+ * 1e-2.  C starts empty and grows as the force reaches dofs (at the
+ * start, whose state moves the whole square by the load); the answer is
+ * the full Newton's, with one compliance column per dof of C, every one
+ * of them joined during the call; again with the slave nodes' x and z
+ * dofs coupled in K (the normal reactions move the x dofs, the square
+ * tilts) and the material tangent (linear convergence). */
+static void test_contact_closes(void **state)
+{
+    (void)state;
+    long Ti[1024], Tj[1024], nt = 0, bad = -1;
+    double Tv[1024], Kd[N * N], f[N], uf[N] = {0}, uc[N] = {0}, r[N];
+    ZSLAVE = 2e-3;
+    for (int tangent = 0; tangent < 2; tangent++) {
+    KXZ = tangent ? 0.5 * KG : 0.0;
+    memset(uf, 0, sizeof uf);
+    memset(uc, 0, sizeof uc);
+    ffc_scene *s = make(0.0, KG, &nt, Ti, Tj, Tv, Kd);
+    loads(0.0, 1.0, f);
+    residual(s, Kd, f, uc, r, NULL);
+    double fz = 1.0;
+    assert_int_equal(ffc_scene_stat(s, -1, "Fz", 0, &fz), FFC_OK);
+    assert_true(fz == 0.0); /* separated at the start */
+    full_newton(s, Kd, f, uf);
+    ffc_scene_stat(s, -1, "Fz", 0, &fz);
+    assert_true(fabs(fz) > 1.0);
+    ffc_newton_opts o = ffc_newton_defaults();
+    o.ftol = 1e-12 * fabs(fz);
+    o.max_iter = 60;
+    if (tangent) o.tangent = FFC_TANGENT_MATERIAL;
+    ffc_newton_info in;
+    assert_int_equal(ffc_scene_newton(s, r, uc, &o, &in, &bad), FFC_OK);
+    check_same(uc, uf);
+    assert_true(in.grown > 0 && in.grown == in.m);
+    ffc_solve_info si;
+    ffc_scene_solve_info(s, &si);
+    assert_int_equal(si.columns, in.m);
+    ffc_scene_free(s);
+    }
+    ZSLAVE = -D;
+    KXZ = 0.0;
+}
+
+/* The node-to-surface saddle point on the factored bulk
+ * (ffc_scene_nts_solve) against a dense solve of the whole system
+ * [K Bf'; B Cm] [x; m] = [f; c] with the same rows: x and m to 1e-10 of
+ * their largest entries.  Frictionless (B = Bf); with friction, first
+ * sticking rows, then, after the update under a tangential load larger
+ * than mu times the pressing one, sliding rows (a C block, a
+ * non-symmetric system); and a slave square held only by the sticking
+ * contact (K singular and shifted: the coupled form). */
+static void nts_case(double mu, double fx, double pz, double kgs, int slide)
+{
+    long Ti[1024], Tj[1024], nt = 0, bad = -1;
+    double Tv[1024], Kd[N * N], f[N], u[N] = {0}, x[N];
+    METHOD = FFC_METHOD_NTS;
+    ffc_scene *s = make(mu, kgs, &nt, Ti, Tj, Tv, Kd);
+    METHOD = FFC_METHOD_AL;
+    loads(fx, pz, f);
+    const double fixed[N] = {[12] = 1.0};
+    assert_int_equal(ffc_scene_nts_step(s), FFC_OK);
+    long changes = 0, nr = 0;
+    double m[64];
+    for (int pass = 0; pass <= slide; pass++) {
+        if (pass) assert_int_equal(ffc_scene_nts_update(s, u, nr, m, &changes, &bad), FFC_OK);
+        /* the rows and the dense system */
+        long Bi[512], Bj[512], ntr = 0;
+        double Bv[512], Fv[512], c[64];
+        assert_int_equal(ffc_scene_nts_rows(s, u, fixed, 512, Bi, Bj, Bv, Fv, 64, c, &ntr, &nr, &bad), FFC_OK);
+        assert_true(nr > 0);
+        const int na = N + (int)nr;
+        double *A = calloc((size_t)na * na, sizeof(double)), rhs[N + 64], sol[N + 64];
+        for (int i = 0; i < N; i++) {
+            for (int j = 0; j < N; j++) A[i * na + j] = Kd[i * N + j];
+            rhs[i] = f[i];
+        }
+        int cblock = 0;
+        for (long e = 0; e < ntr; e++) {
+            if (Bj[e] >= N) { A[(N + Bi[e]) * na + Bj[e]] += Bv[e]; cblock++; continue; }
+            A[(N + Bi[e]) * na + Bj[e]] += Bv[e];
+            A[Bj[e] * na + N + Bi[e]] += Fv[e];
+        }
+        for (long r = 0; r < nr; r++) rhs[N + r] = c[r];
+        if (pass == 1) assert_true(cblock > 0); /* sliding rows */
+        test_dense_solve(na, A, rhs, sol);
+        free(A);
+        /* the same on the factored bulk */
+        long nr2 = 0;
+        assert_int_equal(ffc_scene_nts_solve(s, u, fixed, f, x, 64, m, &nr2, &bad), FFC_OK);
+        assert_int_equal(nr2, nr);
+        double xmax = 0.0, mmax = 0.0;
+        for (int i = 0; i < N; i++) xmax = fmax(xmax, fabs(sol[i]));
+        for (long r = 0; r < nr; r++) mmax = fmax(mmax, fabs(sol[N + r]));
+        assert_true(xmax > 0 && mmax > 0);
+        for (int i = 0; i < N; i++) assert_close(x[i], sol[i], 1e-10 * xmax);
+        for (long r = 0; r < nr; r++) assert_close(m[r], sol[N + r], 1e-10 * mmax);
+        memcpy(u, x, sizeof u);
+    }
+    ffc_solve_info si;
+    ffc_scene_solve_info(s, &si);
+    assert_int_equal(si.factorizations, 1);
+    if (kgs == 0) assert_true(si.shift > 0);
+    ffc_scene_free(s);
+}
+
+static void test_nts_saddle(void **state)
+{
+    (void)state;
+    nts_case(0.0, 0.0, 0.0, KG, 0);    /* frictionless */
+    nts_case(0.3, 3.0, 0.0, KG, 1);    /* stick, then slide */
+    nts_case(0.5, 0.02, 0.2, 0.0, 0);  /* held only by the contact (sticking) */
+}
+
+/* the saddle solve's bad input: no bulk; a multiplier array too small (the
+ * count needed returned); a non-finite right-hand side */
+static void test_nts_saddle_bad_input(void **state)
+{
+    (void)state;
+    long Ti[1024], Tj[1024], nt = 0, bad = -1, nr = 0;
+    double Tv[1024], Kd[N * N], f[N] = {0}, u[N] = {0}, x[N], m[64];
+    const double fixed[N] = {[12] = 1.0};
+    METHOD = FFC_METHOD_NTS;
+    ffc_scene *s = make(0.0, KG, &nt, Ti, Tj, Tv, Kd);
+    METHOD = FFC_METHOD_AL;
+    assert_int_equal(ffc_scene_nts_step(s), FFC_OK);
+    assert_int_equal(ffc_scene_nts_solve(s, u, fixed, f, x, 0, m, &nr, &bad), FFC_ERR_CAPACITY);
+    assert_true(nr > 0);
+    assert_int_equal(ffc_scene_nts_solve(s, u, fixed, f, x, nr, m, &nr, &bad), FFC_OK);
+    f[5] = NAN;
+    assert_int_equal(ffc_scene_nts_solve(s, u, fixed, f, x, 64, m, &nr, &bad), FFC_ERR_NONFINITE);
+    assert_int_equal(bad, 5);
+    assert_int_equal(ffc_scene_nts_solve(NULL, u, fixed, f, x, 64, m, &nr, &bad), FFC_ERR_NULL);
+    ffc_scene_free(s);
+    double X[3 * NV] = {0};
+    ffc_effects fx = {0, 0, 0};
+    assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_OK);
+    f[5] = 0.0;
+    assert_int_equal(ffc_scene_nts_solve(s, u, fixed, f, x, 64, m, &nr, &bad), FFC_ERR_EMPTY);
+    ffc_scene_free(s);
+}
+
 static void test_bad_input(void **state)
 {
     (void)state;
@@ -344,7 +494,8 @@ int main(void)
         cmocka_unit_test(test_frictionless),   cmocka_unit_test(test_stick),
         cmocka_unit_test(test_slip),           cmocka_unit_test(test_held_by_contact),
         cmocka_unit_test(test_quadratic),      cmocka_unit_test(test_growth),
-        cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_contact_closes), cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_nts_saddle),     cmocka_unit_test(test_nts_saddle_bad_input),
         cmocka_unit_test(test_not_positive_definite),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
