@@ -706,6 +706,8 @@ typedef struct {
     long solves;         /* ffc_scene_solve calls (count) */
     long backsolves;     /* right-hand sides solved with the factor (count) */
     long refinements;    /* iterative-refinement steps (count) */
+    long kept;           /* condensed Newton directions solved by GMRES preconditioned with the last dense LU
+                            of the same support (count) */
     long m;              /* contact dofs in the compliance (count) */
     double shift;        /* s (force/length; 0: no shift) */
     double rcond;        /* CHOLMOD's estimate of the factor's reciprocal condition (1) */

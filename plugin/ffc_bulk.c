@@ -46,6 +46,15 @@ struct ffc__bulk {
     long tcap;
     double *Mw, *Gw;           /* [wcap] the dense tangent and G on its support (a x a) */
     long wcap;
+    /* the last dense LU of a condensed Newton direction, kept as the
+     * preconditioner of the next ones on the same support (GMRES) */
+    long ka;                   /* its order (0: none) */
+    long *kdof;                /* [kcap] the dofs of its support, in order */
+    double *klu;               /* [kcap*kcap] its LU factors (leading dimension ka) */
+    int *kpiv;                 /* [kcap] its pivots */
+    long kcap;
+    double *gv;                /* [gcap] GMRES work: the Krylov basis and its Hessenberg matrix */
+    long gcap;
     long nr;                   /* rows R: the dofs the contact evaluation may read (count) */
     long *rows;                /* [nr] */
     long *rpos;                /* [n] position in rows, or -1 */
@@ -73,6 +82,7 @@ void ffc__bulk_free(ffc__bulk *b)
     free(b->xc); free(b->w); free(b->r); free(b->dx); free(b->t); free(b->kv);
     free(b->Gc); free(b->ti); free(b->tj); free(b->tv); free(b->Mw); free(b->Gw);
     free(b->rows); free(b->rpos); free(b->H);
+    free(b->kdof); free(b->klu); free(b->kpiv); free(b->gv);
     free(b);
 }
 
@@ -456,6 +466,9 @@ void dpotrs_(const char *uplo, const int *n, const int *nrhs, const double *a, c
              const int *ldb, int *info);
 void dgemv_(const char *trans, const int *m, const int *n, const double *alpha, const double *a, const int *lda,
             const double *x, const int *incx, const double *beta, double *y, const int *incy);
+void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
+void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a, const int *lda, const int *ipiv,
+             double *b, const int *ldb, int *info);
 void dgemm_(const char *ta, const char *tb, const int *m, const int *n, const int *k, const double *alpha,
             const double *a, const int *lda, const double *b, const int *ldb, const double *beta, double *c,
             const int *ldc);
@@ -657,6 +670,113 @@ static int force_c(const ffc__bulk *b, const double y[], double Fp[], long *bad)
     return st;
 }
 
+static double dot(long m, const double x[], const double y[])
+{
+    double v = 0.0;
+    for (long k = 0; k < m; k++) v += x[k] * y[k];
+    return v;
+}
+
+enum { KRYLOV = 20 };   /* GMRES: basis vectors per cycle */
+
+/* Solves (I + Gaa M) t = t (a x a, both dense column-major) by GMRES,
+ * right-preconditioned with the kept LU of an earlier system on the same
+ * support, to a true residual of 1e-12 of the right-hand side.  Returns
+ * the iterations, or -1 when it does not get there in two cycles (t is
+ * then unchanged: the caller factorizes afresh). */
+static int gmres_kept(ffc__bulk *b, long a, const double M[], const double Gaa[], double t[])
+{
+    const long k1 = KRYLOV + 1, need = a * (k1 + 4) + k1 * KRYLOV + 3 * k1;
+    if (need > b->gcap) {
+        double *g = realloc(b->gv, (size_t)need * sizeof(double));
+        if (!g) return -1;
+        b->gv = g;
+        b->gcap = need;
+    }
+    double *V = b->gv, *x = V + a * k1, *w = x + a, *z = w + a, *rb = z + a, *H = rb + a, *cs = H + k1 * KRYLOV,
+           *sn = cs + k1, *g = sn + k1;
+    const int ai = (int)a, one = 1;
+    const double d1 = 1.0, d0 = 0.0;
+    int info = 0, iters = 0;
+    double bn = 0.0;
+    for (long r = 0; r < a; r++) { rb[r] = t[r]; x[r] = 0.0; bn += t[r] * t[r]; }
+    bn = sqrt(bn);
+    if (bn == 0.0) return 0;
+    /* w = A v = v + Gaa (M v) */
+#define AMUL(v_, out_)                                                                                             \
+    do {                                                                                                           \
+        dgemv_("N", &ai, &ai, &d1, M, &ai, (v_), &one, &d0, z, &one);                                              \
+        memcpy((out_), (v_), (size_t)a * sizeof(double));                                                          \
+        dgemv_("N", &ai, &ai, &d1, Gaa, &ai, z, &one, &d1, (out_), &one);                                          \
+    } while (0)
+    for (int cycle = 0; cycle < 2; cycle++) {
+        /* r = b - A x into V[:, 0] */
+        AMUL(x, w);
+        double beta = 0.0;
+        for (long r = 0; r < a; r++) { V[r] = rb[r] - w[r]; beta += V[r] * V[r]; }
+        beta = sqrt(beta);
+        if (beta <= 1e-12 * bn) {
+            memcpy(t, x, (size_t)a * sizeof(double));
+            return iters;
+        }
+        for (long r = 0; r < a; r++) V[r] /= beta;
+        for (long i = 0; i < k1; i++) g[i] = 0.0;
+        g[0] = beta;
+        long j = 0;
+        for (; j < KRYLOV; j++) {
+            /* w = A P^-1 V[:, j] */
+            memcpy(w, V + j * a, (size_t)a * sizeof(double));
+            dgetrs_("N", &ai, &one, b->klu, &ai, b->kpiv, w, &ai, &info);
+            if (info) return -1;
+            double *vj1 = V + (j + 1) * a;
+            AMUL(w, vj1);
+            iters++;
+            double *h = H + j * k1;
+            for (long i = 0; i <= j; i++) { /* modified Gram-Schmidt */
+                h[i] = dot(a, vj1, V + i * a);
+                for (long r = 0; r < a; r++) vj1[r] -= h[i] * V[i * a + r];
+            }
+            h[j + 1] = sqrt(dot(a, vj1, vj1));
+            if (h[j + 1] > 0.0)
+                for (long r = 0; r < a; r++) vj1[r] /= h[j + 1];
+            for (long i = 0; i < j; i++) { /* earlier rotations */
+                const double hi = cs[i] * h[i] + sn[i] * h[i + 1];
+                h[i + 1] = -sn[i] * h[i] + cs[i] * h[i + 1];
+                h[i] = hi;
+            }
+            const double rr = hypot(h[j], h[j + 1]);
+            if (!(rr > 0.0)) return -1;
+            cs[j] = h[j] / rr;
+            sn[j] = h[j + 1] / rr;
+            h[j] = rr;
+            h[j + 1] = 0.0;
+            g[j + 1] = -sn[j] * g[j];
+            g[j] *= cs[j];
+            if (fabs(g[j + 1]) <= 1e-13 * bn) { j++; break; }
+        }
+        /* y = H^-1 g (upper triangular j x j), x += P^-1 V y */
+        for (long i = j - 1; i >= 0; i--) {
+            double v = g[i];
+            for (long c = i + 1; c < j; c++) v -= H[c * k1 + i] * g[c];
+            g[i] = v / H[i * k1 + i];
+        }
+        for (long r = 0; r < a; r++) w[r] = 0.0;
+        for (long i = 0; i < j; i++)
+            for (long r = 0; r < a; r++) w[r] += g[i] * V[i * a + r];
+        dgetrs_("N", &ai, &one, b->klu, &ai, b->kpiv, w, &ai, &info);
+        if (info) return -1;
+        for (long r = 0; r < a; r++) x[r] += w[r];
+    }
+    /* the true residual after the last cycle */
+    AMUL(x, w);
+    double rn = 0.0;
+    for (long r = 0; r < a; r++) rn += (rb[r] - w[r]) * (rb[r] - w[r]);
+#undef AMUL
+    if (!(sqrt(rn) <= 1e-12 * bn)) return -1;
+    memcpy(t, x, (size_t)a * sizeof(double));
+    return iters;
+}
+
 /* The Newton direction dy of (I + G Kc') dy = -G rho, Kc' = Kc_CC - S from
  * the triplets (b->ti, tj, tv)[nt], reduced to Kc's support a: with
  * q = G rho, t + G_aa M t = -q_a (dense LU, b->A), dy = -q - G_Ca M t;
@@ -709,10 +829,19 @@ static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], dou
             const double *g = b->G + ad[c] * ld;
             for (long r = 0; r < a; r++) Gaa[r + c * a] = g[ad[r]];
         }
-        /* A = I + G_aa M, column by column over M's nonzeros (a few dozen
-         * per column: a^2 x that, against 2 a^3 for a dense product) */
+        for (long r = 0; r < a; r++) t[r] = -q[ad[r]];
+        /* on the support of the kept LU: GMRES preconditioned by it (a few
+         * a^2 products instead of an a^3 LU; the support stays the same
+         * over most iterations of a step) */
+        int reuse = b->ka == a;
+        for (long r = 0; r < a && reuse; r++) reuse = b->kdof[r] == b->dof[ad[r]];
+        const int git = reuse ? gmres_kept(b, a, M, Gaa, t) : -1;
+        if (git > 10) b->ka = 0; /* (slow to converge: a fresh LU next time) */
+        if (git >= 0) b->info.kept++;
+        /* else A = I + G_aa M, column by column over M's nonzeros (a few
+         * dozen per column: a^2 x that, against 2 a^3 for a dense product) */
         double *A = b->A;
-        for (long j = 0; j < a; j++) {
+        for (long j = 0; j < a && git < 0; j++) {
             double *aj = A + j * a;
             for (long r = 0; r < a; r++) aj[r] = 0.0;
             aj[j] = 1.0;
@@ -724,8 +853,24 @@ static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], dou
                 for (long r = 0; r < a; r++) aj[r] += v * gi[r];
             }
         }
-        for (long r = 0; r < a; r++) t[r] = -q[ad[r]];
-        st = ffc__lu_solve(a, A, b->piv, t);
+        if (git < 0) {
+            st = ffc__lu_solve(a, A, b->piv, t);
+            if (!st && a > b->kcap) { /* keep the LU */
+                long *kd = realloc(b->kdof, (size_t)a * sizeof(long));
+                if (kd) b->kdof = kd;
+                int *kp = kd ? realloc(b->kpiv, (size_t)a * sizeof(int)) : NULL;
+                if (kp) b->kpiv = kp;
+                double *kl = kp ? realloc(b->klu, (size_t)(a * a) * sizeof(double)) : NULL;
+                if (kl) { b->klu = kl; b->kcap = a; }
+            }
+            b->ka = 0;
+            if (!st && a <= b->kcap) {
+                memcpy(b->klu, A, (size_t)(a * a) * sizeof(double));
+                memcpy(b->kpiv, b->piv, (size_t)a * sizeof(int));
+                for (long r = 0; r < a; r++) b->kdof[r] = b->dof[ad[r]];
+                b->ka = a;
+            }
+        }
         if (!st) dgemv_("N", &ai, &ai, &d1, M, &ai, t, &one, &d0, s, &one); /* s = M t */
     }
     if (!st) {
@@ -744,13 +889,6 @@ static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], dou
     }
     for (long k = 0; k < m; k++) b->pos[b->dof[k]] = -1;
     return st;
-}
-
-static double dot(long m, const double x[], const double y[])
-{
-    double v = 0.0;
-    for (long k = 0; k < m; k++) v += x[k] * y[k];
-    return v;
 }
 
 int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const long cand[], ffc__contact_fn fn,
@@ -1019,10 +1157,6 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
 }
 
 /* ------------------------------------ the node-to-surface saddle point */
-
-void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
-void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a, const int *lda, const int *ipiv,
-             double *b, const int *ldb, int *info);
 
 /* The rows (Bi, Bj, Bv, Fv)[nt] of nr constraints (see ffc__bulk_saddle)
  * and the dense system of one saddle solve: S = Cm - B G Bf' (nr x nr),

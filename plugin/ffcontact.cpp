@@ -1469,6 +1469,7 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "solves") return in.solves;
     if (k == "backsolves") return in.backsolves;
     if (k == "refinements") return in.refinements;
+    if (k == "keptLU") return in.kept;
     if (k == "contactDofs") return in.m;
     if (k == "shift") return in.shift;
     if (k == "rcond") return in.rcond;
@@ -1478,7 +1479,7 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "fallbacks") return d.newton.fallbacks;
     if (k == "condensedDofs") return d.newton.m;
     if (k == "support") return d.newton.support;
-    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, contactDofs, shift, rcond, residual, newtonIterations, evaluations, fallbacks, condensedDofs, support");
+    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, fallbacks, condensedDofs, support");
     return 0;
 }
 
