@@ -681,7 +681,9 @@ enum { KRYLOV = 20 };   /* GMRES: basis vectors per cycle */
 
 /* Solves (I + Gaa M) t = t (a x a, both dense column-major) by GMRES,
  * right-preconditioned with the kept LU of an earlier system on the same
- * support, to a true residual of 1e-12 of the right-hand side.  Returns
+ * support, to a true residual of 1e-14 of the right-hand side (the LU's
+ * own accuracy: a looser one costs Newton iterations on a penalty-stiff
+ * system).  Returns
  * the iterations, or -1 when it does not get there in two cycles (t is
  * then unchanged: the caller factorizes afresh). */
 static int gmres_kept(ffc__bulk *b, long a, const double M[], const double Gaa[], double t[])
@@ -715,7 +717,7 @@ static int gmres_kept(ffc__bulk *b, long a, const double M[], const double Gaa[]
         double beta = 0.0;
         for (long r = 0; r < a; r++) { V[r] = rb[r] - w[r]; beta += V[r] * V[r]; }
         beta = sqrt(beta);
-        if (beta <= 1e-12 * bn) {
+        if (beta <= 1e-14 * bn) {
             memcpy(t, x, (size_t)a * sizeof(double));
             return iters;
         }
@@ -752,7 +754,7 @@ static int gmres_kept(ffc__bulk *b, long a, const double M[], const double Gaa[]
             h[j + 1] = 0.0;
             g[j + 1] = -sn[j] * g[j];
             g[j] *= cs[j];
-            if (fabs(g[j + 1]) <= 1e-13 * bn) { j++; break; }
+            if (fabs(g[j + 1]) <= 1e-15 * bn) { j++; break; }
         }
         /* y = H^-1 g (upper triangular j x j), x += P^-1 V y */
         for (long i = j - 1; i >= 0; i--) {
@@ -772,7 +774,7 @@ static int gmres_kept(ffc__bulk *b, long a, const double M[], const double Gaa[]
     double rn = 0.0;
     for (long r = 0; r < a; r++) rn += (rb[r] - w[r]) * (rb[r] - w[r]);
 #undef AMUL
-    if (!(sqrt(rn) <= 1e-12 * bn)) return -1;
+    if (!(sqrt(rn) <= 1e-14 * bn)) return -1;
     memcpy(t, x, (size_t)a * sizeof(double));
     return iters;
 }
