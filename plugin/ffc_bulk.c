@@ -520,7 +520,8 @@ static int free_dofs(ffc__bulk *b, long nc, const long cand[], int whole, long *
     int st = FFC_OK;
     for (long k = 0; k < nc && !st; k++) {
         if (cand[k] < 0 || cand[k] >= b->n) { *bad = k; st = FFC_ERR_INDEX; break; }
-        for (long d = whole ? cand[k] - cand[k] % 3 : cand[k]; d <= (whole ? cand[k] - cand[k] % 3 + 2 : cand[k]); d++) {
+        const long d0 = whole ? cand[k] - cand[k] % 3 : cand[k], d1 = whole ? d0 + 2 : d0;
+        for (long d = d0; d <= d1; d++) {
             if (d >= b->n || b->big[d] || b->pos[d] != -1) continue;
             b->pos[d] = -2;
             b->nd[c++] = d;
@@ -683,9 +684,8 @@ enum { KRYLOV = 20 };   /* GMRES: basis vectors per cycle */
  * right-preconditioned with the kept LU of an earlier system on the same
  * support, to a true residual of 1e-14 of the right-hand side (the LU's
  * own accuracy: a looser one costs Newton iterations on a penalty-stiff
- * system).  Returns
- * the iterations, or -1 when it does not get there in two cycles (t is
- * then unchanged: the caller factorizes afresh). */
+ * system).  Returns the iterations, or -1 when it does not get there in
+ * two cycles (t is then unchanged: the caller factorizes afresh). */
 static int gmres_kept(ffc__bulk *b, long a, const double M[], const double Gaa[], double t[])
 {
     const long k1 = KRYLOV + 1, need = a * (k1 + 4) + k1 * KRYLOV + 3 * k1;
