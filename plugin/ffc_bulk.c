@@ -532,6 +532,18 @@ static int free_dofs(ffc__bulk *b, long nc, const long cand[], int whole, long *
     return st;
 }
 
+/* the shifted dofs that C lacks join it (their shift is part of the
+ * condensed problem: K + S factorized, -S on C) */
+static int shifted_into_c(ffc__bulk *b, long cap, long *bad)
+{
+    for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = k;
+    long nnew = 0;
+    for (long i = 0; i < b->n; i++)
+        if (b->sh[i] != 0.0 && b->pos[i] == -1) b->nd[nnew++] = i;
+    for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = -1;
+    return add_to_c(b, nnew, b->nd, cap, bad);
+}
+
 /* The first factorization: K alone; when K is singular (a body that only
  * contact holds), K + S shifted on the nodes the contact force reaches
  * (reach[nreach]), else on the linked points' facets (cand[nc]); see
@@ -554,12 +566,7 @@ static int first_factor(ffc__bulk *b, long nreach, const long reach[], long nc, 
         }
         if (st) return st;
     }
-    for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = k;
-    long nnew = 0;
-    for (long i = 0; i < b->n; i++)
-        if (b->sh[i] != 0.0 && b->pos[i] == -1) b->nd[nnew++] = i;
-    for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = -1;
-    return add_to_c(b, nnew, b->nd, cap, bad);
+    return shifted_into_c(b, cap, bad);
 }
 
 /* the free dofs outside C that the force in b->r or a triplet of the
@@ -1277,17 +1284,8 @@ int ffc__bulk_saddle(ffc__bulk *b, long nt, const long Bi[], const long Bj[], co
     if (b->m + nnew > b->mmax) { *bad = b->m + nnew; return FFC_ERR_CAPACITY; }
     int st = FFC_OK;
     if (!b->L && (st = factorize_first(b, nnew, b->nd))) return st;
-    if (nnew && (st = add_columns(b, nnew, b->nd))) return st;
-    for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = k;
-    nnew = 0;
-    for (long i = 0; i < n; i++)
-        if (b->sh[i] != 0.0 && b->pos[i] == -1) b->nd[nnew++] = i;
-    int coupled = 0;
-    for (long i = 0; i < n; i++) coupled |= b->sh[i] != 0.0;
-    for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = -1;
-    if (b->m + nnew > b->mmax) { *bad = b->m + nnew; return FFC_ERR_CAPACITY; }
-    if (nnew && (st = add_columns(b, nnew, b->nd))) return st;
-    b->info.m = b->m;
+    if ((st = add_to_c(b, nnew, b->nd, b->mmax, bad)) || (st = shifted_into_c(b, b->mmax, bad))) return st;
+    const int coupled = b->info.shift != 0.0; /* (the factor is of K + S) */
     b->info.solves++;
     const long m = b->m, ld = b->ld, na = coupled ? m + nr : nr;
     if (na > 46340) return FFC_ERR_SIZE; /* (na^2 within an int for LAPACK) */

@@ -615,6 +615,7 @@ struct SceneData {
     std::vector<std::string> labels; // per pair: "slave {..} / master {..}"
     std::vector<std::vector<long>> tetS, tetM; // per pair: the tetrahedron behind each slave / master facet
     ffc_newton_info newton{};  // the last ffcNewton
+    std::vector<double> ntsM;  // ffcNTSSolve's multipliers, kept at the largest row count met (one call per solve)
     ~SceneData() { ffc_scene_free(s); }
 };
 
@@ -1548,10 +1549,12 @@ long sceneNTSSolve(const Named &, FFScene *const &C, KN<double> *const &u, KN<do
     if (!m) fail(fn, "argument 'm': array is not defined");
     need_not_inverted(fn, d, pu);
     const long n = 3 * d.nn;
-    std::vector<double> xv(n), mv(1);
+    std::vector<double> xv(n);
+    std::vector<double> &mv = d.ntsM;
+    if (mv.empty()) mv.resize(64);
     long nr = 0, bad = -1;
-    int st = ffc_scene_nts_solve(d.s, pu, pfix, pf, xv.data(), 0, nullptr, &nr, &bad);
-    if (st == FFC_ERR_CAPACITY && nr > 0) {
+    int st = ffc_scene_nts_solve(d.s, pu, pfix, pf, xv.data(), (long)mv.size(), mv.data(), &nr, &bad);
+    if (st == FFC_ERR_CAPACITY && nr > (long)mv.size()) {   // (more rows than ever: the rows are made again)
         mv.resize(nr);
         st = ffc_scene_nts_solve(d.s, pu, pfix, pf, xv.data(), nr, mv.data(), &nr, &bad);
     }
