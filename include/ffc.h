@@ -215,6 +215,10 @@ typedef struct {
     double gap;     /* signed normal gap n . (x_s - x_m) (length) */
     double n[3];    /* unit master normal at the foot (1) */
     int where;      /* FFC_FOOT_* of the foot on the master facet */
+    double w;       /* segment links (q = -1, see ffc_mortar_search): the
+                       point's weight on the slave facet's reference
+                       triangle of area 1/2 (1); unused otherwise (the
+                       rule's weight of point q applies) */
 } ffc_link;
 
 /* Opaque search structure over one master surface (owns its memory). */
@@ -261,6 +265,50 @@ int ffc_search_brute(const ffc_tree *t, int nns, long nfs, const long Fs[],
  * Returns the number of points with a partner, or an error. */
 int ffc_search_points(const ffc_tree *t, long np, const double p[],
                       const ffc_search_opts *o, ffc_link links[]);
+
+/* --------------------------------------------------- mortar segments */
+/* Segment-to-segment integration (mortar): each slave facet is clipped
+ * against the projections of the master facets it overlaps, and the
+ * contact integrals are evaluated with a Gauss rule on each piece, so
+ * that integrands that are smooth on each piece but kink at master edges
+ * are integrated exactly (the contact patch test).  Linear facets. */
+#define FFC_CLIPMAX 8   /* vertices of an input polygon of ffc_clip_polygon */
+
+/* Intersection of the convex counter-clockwise polygons a[na] and b[nb]
+ * (3 <= na, nb <= FFC_CLIPMAX) into out[cap] (cap >= na + nb),
+ * counter-clockwise.  Returns its vertex count (0: they do not overlap,
+ * or only along an edge or at a point), or FFC_ERR_NULL, _SIZE,
+ * _CAPACITY, _NONFINITE, _DEGENERATE (an input that is not
+ * counter-clockwise with a positive area). */
+int ffc_clip_polygon(int na, const double a[][2], int nb, const double b[][2], int cap, double out[][2]);
+
+/* The integration points of the slave facet Xs[3][3] (vertex positions)
+ * over the part covered by the master facet Xm[3][3] projected along the
+ * slave normal: xi[cap][2] local coordinates on the slave facet, w[cap]
+ * weights on its reference triangle (area 1/2), the Gauss rule of degree
+ * qdeg on each triangle of the clipped polygon; *covered = the covered
+ * area in local coordinates (1/2: all).  Returns the number of points (0:
+ * no overlap), FFC_ERR_CAPACITY when cap is too small, or an error. */
+int ffc_mortar_segment(int qdeg, const double Xs[3][3], const double Xm[3][3], long cap, double xi[][2],
+                       double w[], double *covered);
+
+/* Dual (biorthogonal) multiplier basis of a linear slave facet from the
+ * points xi[n], w[n] of its covered part: Phi_a = sum_b A[a][b] N_b with
+ * sum_q w_q Phi_a N_b = delta_ab sum_q w_q N_a (see ffc_mortar.c).  A = I
+ * (standard basis) for n = 0 or a nearly singular coverage. */
+int ffc_dual_basis(long n, const double xi[][2], const double w[], double A[3][3]);
+
+/* Segment links of the slave surface Fs[nfs*3] (positions x[nvs*3])
+ * against the tree's master surface (3-node facets): for every slave
+ * facet, every master facet that faces it (normals opposed), whose box
+ * overlaps the slave facet's box grown by the capture distance of
+ * ffc_search, and that lies within it at the segment's centre, gives the
+ * points of ffc_mortar_segment; each link has q = -1, its weight w, the
+ * master facet and the foot of the point on the facet's plane.  Links of
+ * a facet are consecutive, facets in order.  Returns the number of links
+ * written; FFC_ERR_CAPACITY with *need the count when cap is too small. */
+int ffc_mortar_search(const ffc_tree *t, long nfs, const long Fs[], long nvs, const double x[], int qdeg,
+                      const ffc_search_opts *o, long cap, ffc_link links[], long *need);
 
 /* ------------------------------------------------ normal contact links */
 /* Augmented-Lagrangian normal contact (after Laursen; the seed's
@@ -356,6 +404,11 @@ typedef struct {
                           map.  On a symmetry plane the mirror half's
                           contributions cancel them; elsewhere the support
                           carries the force along e_k */
+    const double *dual; /* [9 nfs] or NULL: nodal law on linear slave facets with
+                          dual multipliers, Phi_a = sum_b A_ab N_b on slave facet f
+                          with A = dual + 9 f (row-major, ffc_dual_basis) in place
+                          of N_a, in the weighted gap, the pressure and the
+                          friction sums alike; NULL: standard N_a */
 } ffc_law;
 
 /* ------------------------------------------------------ Coulomb friction */
@@ -471,6 +524,19 @@ int ffc_points(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
                long nl, const ffc_link links[], const double lambda[],
                const double lam_t[], const ffc_law *law, double P[], long *bad);
 
+/* The same columns per slave node of the nodal law (ascending node index,
+ * every node of a slave facet): current position, weighted gap (NaN
+ * without weight), nodal pressure t_a, active (t_a > 0), the node's
+ * weight W_a = sum_q N_a da (its tributary area), the master facet of its
+ * first link (-1: none); with friction the nodal traction on the slave
+ * -T_a, its state and T_a . r~_a (the weighted slip).  *n the rows
+ * (needed, with FFC_ERR_CAPACITY when cap is smaller); FFC_ERR_VALUE for
+ * the pointwise law.  Mortar scenes report these (the dual multipliers'
+ * pointwise values are no pressures). */
+int ffc_points_nodes(const ffc_effects *effects, const ffc_pair *pair, int qdeg, long nl, const ffc_link links[],
+                     const double lambda[], const double lam_t[], const ffc_law *law, long cap, double P[], long *n,
+                     long *bad);
+
 /* Writes the rows of ffc_points (n points) as a legacy-VTK point cloud
  * with scalar fields gap, pressure, active; FFC_ERR_VALUE if the file
  * cannot be written. */
@@ -496,7 +562,10 @@ typedef struct ffc_scene ffc_scene;
 
 enum {
     FFC_METHOD_AL = 0,          /* surface-to-surface augmented Lagrangian */
-    FFC_METHOD_NTS = 1          /* node-to-surface Lagrange multipliers (linear facets; see ffc_nts_*) */
+    FFC_METHOD_NTS = 1,         /* node-to-surface Lagrange multipliers (linear facets; see ffc_nts_*) */
+    FFC_METHOD_MORTAR = 2       /* segment-to-segment augmented Lagrangian: the nodal law on the
+                                   segment links of ffc_mortar_search (linear facets; qdeg is the
+                                   rule on each segment triangle) */
 };
 enum {
     FFC_TANGENT_NONE = 0,       /* residual only */
@@ -522,11 +591,14 @@ typedef struct {
     int max_flips;     /* state changes of a node per step before the chattering guard (>= 1) */
     double scale;      /* row scale (force/length), >= 0; 0: the mean free diagonal of the
                           scene's bulk matrix (ffc_scene_set_bulk) */
+    /* mortar pairs (FFC_METHOD_MORTAR) */
+    int dual;          /* 1: dual (biorthogonal) multipliers at the slave nodes, 0: standard */
 } ffc_pair_opts;
 
 /* Defaults: augmented Lagrangian, qdeg 4, nodal, mu 0, eps_n 0 (must be
  * set), eps_t 0, ffc_search_defaults(); node-to-surface: mu_d -1 (mu),
- * gtol 0 (automatic), ftol 1e-9, max_flips 4, scale 0 (from the bulk). */
+ * gtol 0 (automatic), ftol 1e-9, max_flips 4, scale 0 (from the bulk);
+ * mortar: dual 1.  A mortar pair needs nodal = 1. */
 ffc_pair_opts ffc_pair_defaults(void);
 
 /* FFC_OK, or FFC_ERR_VALUE / FFC_ERR_QUAD for an option out of range. */
@@ -643,7 +715,10 @@ const char *ffc_scene_stat_name(int i);
 long ffc_scene_nlinks(const ffc_scene *s, int pair);
 
 /* ffc_points rows of pair k (k = -1: every pair in order) into
- * P[cap*FFC_POINT_COLS]; *n the rows (needed, with FFC_ERR_CAPACITY). */
+ * P[cap*FFC_POINT_COLS]; *n the rows (needed, with FFC_ERR_CAPACITY).
+ * Mortar pairs give the rows of ffc_points_nodes, one per slave node;
+ * ffc_scene_npoints: the number of rows. */
+long ffc_scene_npoints(const ffc_scene *s, int pair);
 int ffc_scene_points(const ffc_scene *s, const double u[], int pair, long cap, double P[], long *n, long *bad);
 
 /* Copies of pair k's multipliers lam[nlam] and lam_t[3 nlam] (either may

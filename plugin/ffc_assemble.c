@@ -36,7 +36,8 @@ static void gather(int nn, const long *F, long f, const double X[], const double
 
 int ffc__gather_link(const ffc_effects *fx, const ffc_pair *P, int nq, const ffc_link *lk, lnodes_t *n)
 {
-    if (lk->sf < 0 || lk->sf >= P->nfs || lk->q < 0 || lk->q >= nq || lk->mf >= P->nfm) return FFC_ERR_INDEX;
+    if (lk->sf < 0 || lk->sf >= P->nfs || (nq > 0 ? lk->q < 0 || lk->q >= nq : lk->q != -1) || lk->mf >= P->nfm)
+        return FFC_ERR_INDEX;
     for (int a = 0; a < P->ns; a++)
         if (P->Fs[lk->sf * P->ns + a] < 0 || P->Fs[lk->sf * P->ns + a] >= P->nv) return FFC_ERR_INDEX;
     for (int a = 0; a < P->nm; a++)
@@ -60,7 +61,7 @@ int ffc__eval_link(const ffc_effects *fx, const ffc_pair *P, const double qw[], 
     if (s) return s;
     memcpy(dof, n.dof, sizeof n.dof);
     *nd = n.nd;
-    return ffc_link_contact(fx, P->ns, CP3(n.Xs), CP3(n.Xs0), CP3(n.Ds), lk->xs, qw[lk->q], P->nm, CP3(n.Xm),
+    return ffc_link_contact(fx, P->ns, CP3(n.Xs), CP3(n.Xs0), CP3(n.Ds), lk->xs, ffc__link_weight(lk, qw), P->nm, CP3(n.Xm),
                             CP3(n.Dm), lambda, lam_t, law, st, R, K);
 }
 
@@ -128,10 +129,23 @@ int ffc__common_checks(const ffc_effects *fx, const ffc_pair *P, int qdeg, long 
     if (fric && fx->dynamic && !ffc__dynamic_ok(law)) return FFC_ERR_VALUE;
     const double *mo = fx->dynamic ? P->v : P->u_prev;
     if (fric && (!lam_t || !mo)) return FFC_ERR_NULL;
-    double qxi[16][2];
-    *nq = ffc_quad(qdeg, 16, qxi, qw);
-    if (*nq < 0) return *nq;
-    if (nl != P->nfs * *nq) return FFC_ERR_SIZE;
+    if (qdeg == 0) { /* segment links, each with its weight */
+        if (!law->nodal || P->ns != 3 || P->nm != 3) return FFC_ERR_VALUE;
+        if (nl < 0) return FFC_ERR_SIZE;
+        *nq = 0;
+        for (long k = 0; k < nl; k++)
+            if (!(links[k].w >= 0) || isinf(links[k].w)) { *bad = k; return FFC_ERR_NONFINITE; }
+    } else {
+        double qxi[16][2];
+        *nq = ffc_quad(qdeg, 16, qxi, qw);
+        if (*nq < 0) return *nq;
+        if (nl != P->nfs * *nq) return FFC_ERR_SIZE;
+    }
+    if (law->dual) {
+        if (!law->nodal || P->ns != 3) return FFC_ERR_VALUE;
+        for (long k = 0; k < 9 * P->nfs; k++)
+            if (!isfinite(law->dual[k])) { *bad = k / 9; return FFC_ERR_NONFINITE; }
+    }
     for (long k = 0; k < P->nfs * P->ns; k++)
         if (P->Fs[k] < 0 || P->Fs[k] >= P->nv) return FFC_ERR_INDEX;
     const long n = law->nodal ? P->nv : nl;

@@ -28,7 +28,7 @@ int ffc_augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
         if (s) return s;
         for (long e = 0; e < w.n; e++) {
             const double t = ffc__nodal_point_pressure(pair, &links[w.L[e].k], &w.L[e], w.tn);
-            if (!(t > 0.0)) continue;
+            if (t == 0.0) continue;
             double Tq[3] = {0, 0, 0};
             int fs;
             if (fric) ffc__nodal_point_traction(pair, &links[w.L[e].k], &w.L[e], w.T, Tq, &fs);

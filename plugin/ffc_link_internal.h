@@ -28,6 +28,12 @@ typedef struct {
 
 #define CP3(a) ((const double(*)[3])(a))
 
+/* weight of a link's point: the rule's (q >= 0) or its own (segment links, q = -1) */
+static inline double ffc__link_weight(const ffc_link *lk, const double qw[])
+{
+    return lk->q < 0 ? lk->w : qw[lk->q];
+}
+
 /* Nodal (mortar-type) law, see the Formulation comment in ffc_nodal.c.
  * A linked point: */
 typedef struct {

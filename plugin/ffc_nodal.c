@@ -119,7 +119,7 @@ int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw
         e->nd = ln.nd;
         ffc_link_state st;
         lgeo_t g;
-        s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), lk->xs, qw[lk->q], P->nm, CP3(ln.Xm), &st, &g,
+        s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), lk->xs, ffc__link_weight(lk, qw), P->nm, CP3(ln.Xm), &st, &g,
                                NULL);
         if (s) { *bad = k; ffc__nodal_free(w); return s; }
         memcpy(e->G, g.G, sizeof e->G);
@@ -132,6 +132,10 @@ int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw
          * would leave vertex nodes without weight) */
         ffc_shape(3, lk->xs, e->N, NULL);
         for (int a = 3; a < P->ns; a++) e->N[a] = 0.0;
+        if (law->dual) { /* dual basis Phi_a = sum_b A_ab N_b of the facet (ffc_dual_basis) */
+            const double *A = law->dual + 9 * lk->sf, L[3] = {e->N[0], e->N[1], e->N[2]};
+            for (int a = 0; a < 3; a++) e->N[a] = A[3 * a] * L[0] + A[3 * a + 1] * L[1] + A[3 * a + 2] * L[2];
+        }
         if (lam_t) {
             nfl_t *fl = &w->F[w->n];
             ffc__link_slip(&g, CP3(ln.Ds), CP3(ln.Dm), fl->r);
@@ -221,11 +225,14 @@ void ffc__nodal_point_traction(const ffc_pair *P, const ffc_link *lk, const nlin
     }
 }
 
-/* statistics of a linked point of the nodal law: pressure t (counted when
- * > 0) and friction traction Tq */
+/* statistics of a linked point of the nodal law: pressure t (counted as
+ * active when > 0; a negative t, between pressed nodes with dual
+ * multipliers, adds to the force) and friction traction Tq */
 void ffc__nodal_point_stats(ffc_stats *s, double t, const nlink_t *e, const double Tq[3])
 {
     if (t > 0.0) ffc__stats_pressure(s, t, e->da, e->n);
+    else
+        for (int i = 0; i < 3; i++) s->force[i] += t * e->da * e->n[i];
     for (int i = 0; i < 3; i++) s->force_t[i] -= Tq[i] * e->da;
 }
 
@@ -310,7 +317,7 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
         int fs = FFC_FRIC_OPEN;
         if (fric) ffc__nodal_point_traction(P, lk, E, w.T, Tq, &fs);
         const int has_t = fric && (Tq[0] != 0.0 || Tq[1] != 0.0 || Tq[2] != 0.0);
-        if (!(t > 0.0) && !has_t) continue;
+        if (t == 0.0 && !has_t) continue; /* dual multipliers: t < 0 between pressed nodes counts too */
         ffc__nodal_point_stats(stats, t, E, Tq);
         for (int a = 0; a < E->nd; a++) R[E->dof[a]] -= t * E->da * E->G[a];
         if (has_t)
@@ -321,7 +328,7 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
         ffc_link_state sg;
         lgeo_t g;
         if (!s)
-            s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), lk->xs, qw[lk->q], P->nm, CP3(ln.Xm), &sg,
+            s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), lk->xs, ffc__link_weight(lk, qw), P->nm, CP3(ln.Xm), &sg,
                                    &g, D);
         if (s) { *bad = E->k; ffc__nodal_free(&w); return s; }
         for (int a = 0; a < E->nd; a++)

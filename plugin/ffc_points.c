@@ -5,6 +5,7 @@
 #include "ffc_link_internal.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 int ffc_points(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
@@ -72,5 +73,61 @@ int ffc_points(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
         row[11] = st.fstate; row[12] = ffc__dot(st.t, st.slip);
     }
     ffc__nodal_free(&w);
+    return FFC_OK;
+}
+
+int ffc_points_nodes(const ffc_effects *effects, const ffc_pair *pair, int qdeg, long nl, const ffc_link links[],
+                     const double lambda[], const double lam_t[], const ffc_law *law, long cap, double P[], long *n,
+                     long *bad)
+{
+    long dummy;
+    if (!bad) bad = &dummy;
+    *bad = -1;
+    if (!n) return FFC_ERR_NULL;
+    *n = 0;
+    double qw[16];
+    int nq;
+    int s = ffc__common_checks(effects, pair, qdeg, nl, links, law, lambda, lam_t, qw, &nq, bad);
+    if (s) return s;
+    if (!law->nodal) return FFC_ERR_VALUE;
+    if (cap > 0 && !P) return FFC_ERR_NULL;
+    long *mf = malloc((size_t)pair->nv * sizeof *mf);
+    if (!mf) return FFC_ERR_MEMORY;
+    for (long v = 0; v < pair->nv; v++) mf[v] = -2; /* not a slave node */
+    for (long k = 0; k < pair->nfs * pair->ns; k++) mf[pair->Fs[k]] = -1;
+    for (long k = nl - 1; k >= 0; k--) /* each node's first link's master facet */
+        if (links[k].mf >= 0)
+            for (int a = 0; a < pair->ns; a++) mf[pair->Fs[links[k].sf * pair->ns + a]] = links[k].mf;
+    long need = 0;
+    for (long v = 0; v < pair->nv; v++) need += mf[v] >= -1;
+    *n = need;
+    if (cap < need) { free(mf); return FFC_ERR_CAPACITY; }
+    const int fric = ffc__friction_on(effects, law);
+    nodal_t w;
+    if ((s = ffc__nodal_prepare(effects, pair, qw, nq, nl, links, lambda, fric ? lam_t : NULL, law, &w, NULL, bad))) {
+        free(mf);
+        return s;
+    }
+    long r = 0;
+    for (long v = 0; v < pair->nv; v++) {
+        if (mf[v] < -1) continue;
+        double *row = P + r++ * FFC_POINT_COLS;
+        const double W = w.Wn[v];
+        for (int i = 0; i < 3; i++) row[i] = pair->X[3 * v + i] + pair->u[3 * v + i];
+        row[3] = W > 0.0 ? w.Gn[v] / W : NAN;
+        row[4] = w.tn[v];
+        row[5] = w.tn[v] > 0.0;
+        row[6] = W;
+        row[7] = (double)mf[v];
+        for (int i = 8; i < FFC_POINT_COLS; i++) row[i] = 0.0;
+        if (fric && W > 0.0) {
+            const nfn_t *T = &w.T[v];
+            for (int i = 0; i < 3; i++) row[8 + i] = -T->f.t[i];
+            row[11] = T->f.state;
+            row[12] = ffc__slip_scale(effects, law) * ffc__dot(T->f.t, T->r);
+        }
+    }
+    ffc__nodal_free(&w);
+    free(mf);
     return FFC_OK;
 }

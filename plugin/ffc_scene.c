@@ -15,8 +15,11 @@ typedef struct {
     long *Fs, *Fm;     /* [nfs*nper], [nfm*nper] facet nodes */
     ffc_tree *tree;    /* over the master facets (built at the first search) */
     int nq;            /* quadrature points per slave facet */
-    long nl;           /* links: nfs * nq */
+    long nl;           /* links: nfs * nq (mortar: as the last search found) */
+    long lcap;         /* capacity of links (mortar) */
+    long nsn;          /* distinct slave nodes (mortar: its output rows) */
     ffc_link *links;   /* [nl] */
+    double *dual;      /* [9 nfs] mortar: the dual basis of each slave facet (ffc_dual_basis) */
     long nlam;         /* multipliers: nv (nodal) or nl (pointwise) */
     double *lam, *lam_t;   /* [nlam], [3 nlam] */
     double *lam0, *lam_t0; /* the same at the last commit */
@@ -64,6 +67,7 @@ ffc_pair_opts ffc_pair_defaults(void)
     o.ftol = 1e-9;
     o.max_flips = 4;
     o.scale = 0.0;
+    o.dual = 1;
     return o;
 }
 
@@ -72,7 +76,9 @@ static int finite_nonneg(double a) { return a >= 0 && isfinite(a); }
 int ffc_pair_opts_check(const ffc_pair_opts *o)
 {
     if (!o) return FFC_ERR_NULL;
-    if (o->method != FFC_METHOD_AL && o->method != FFC_METHOD_NTS) return FFC_ERR_VALUE;
+    if (o->method != FFC_METHOD_AL && o->method != FFC_METHOD_NTS && o->method != FFC_METHOD_MORTAR)
+        return FFC_ERR_VALUE;
+    if ((o->dual != 0 && o->dual != 1) || (o->method == FFC_METHOD_MORTAR && o->nodal != 1)) return FFC_ERR_VALUE;
     if (!isfinite(o->mu_d) || o->mu_d > o->mu || !finite_nonneg(o->gtol) || !finite_nonneg(o->ftol) ||
         o->max_flips < 1 || !finite_nonneg(o->scale))
         return FFC_ERR_VALUE;
@@ -92,6 +98,7 @@ static void pair_free(scene_pair *p)
     free(p->Fm);
     ffc_tree_free(p->tree);
     free(p->links);
+    free(p->dual);
     free(p->lam);
     free(p->lam_t);
     free(p->lam0);
@@ -209,6 +216,16 @@ static int pair_alloc_lambda(scene_pair *p, long nv)
  * the pair keeps the links it had. */
 static int pair_alloc_links(scene_pair *p)
 {
+    if (p->o.method == FFC_METHOD_MORTAR) { /* links come from each search; the dual basis starts standard */
+        double *d = p->dual ? p->dual : malloc(9 * p->nfs * sizeof *d);
+        if (!d) return FFC_ERR_MEMORY;
+        for (long f = 0; f < p->nfs; f++)
+            for (int i = 0; i < 9; i++) d[9 * f + i] = i % 4 == 0;
+        p->dual = d;
+        p->nl = 0;
+        p->nq = 0;
+        return FFC_OK;
+    }
     const int nq = ffc_quad_size(p->o.qdeg);
     ffc_link *links = calloc(p->nfs * nq, sizeof *links);
     if (!links) return FFC_ERR_MEMORY;
@@ -270,7 +287,7 @@ int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const 
     if ((st = check_nodes(nfs * s->nper, Fs, s->nv, bad))) return st;
     if ((st = check_nodes(nfm * s->nper, Fm, s->nv, bad))) return st;
     if ((st = check_fused(s->nper, nfs, Fs, nfm, Fm, s->nv, bad))) return st;
-    if (o->method == FFC_METHOD_NTS && s->nper != 3) return FFC_ERR_NODES;
+    if ((o->method == FFC_METHOD_NTS || o->method == FFC_METHOD_MORTAR) && s->nper != 3) return FFC_ERR_NODES;
     if (s->np > 0 && s->p[0].o.method != o->method) return FFC_ERR_VALUE; /* one method per scene */
     if (s->np == s->cap) {
         int cap = s->cap ? 2 * s->cap : 4;
@@ -292,6 +309,12 @@ int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const 
     }
     memcpy(p->Fs, Fs, nfs * s->nper * sizeof *Fs);
     memcpy(p->Fm, Fm, nfm * s->nper * sizeof *Fm);
+    if (o->method == FFC_METHOD_MORTAR) {
+        unsigned char *m = calloc(s->nv, 1);
+        if (!m) { pair_free(p); return FFC_ERR_MEMORY; }
+        for (long i = 0; i < nfs * s->nper; i++) p->nsn += !m[Fs[i]], m[Fs[i]] = 1;
+        free(m);
+    }
     if (o->method == FFC_METHOD_NTS && (st = nts_alloc(s, p))) {
         pair_free(p);
         return st;
@@ -368,6 +391,49 @@ static int positions(ffc_scene *s, const double u[], long *bad)
     return FFC_OK;
 }
 
+/* The segment links of a mortar pair at s->x (grown as needed; on
+ * failure the pair keeps its links) and the dual basis of each slave
+ * facet from them; returns the link count or an error. */
+static int mortar_search(const ffc_scene *s, scene_pair *p)
+{
+    long need = 0;
+    int st = ffc_mortar_search(p->tree, p->nfs, p->Fs, s->nv, s->x, p->o.qdeg, &p->o.search, p->lcap, p->links, &need);
+    if (st == FFC_ERR_CAPACITY) {
+        const long cap = need + need / 4 + 16;
+        ffc_link *l = malloc(cap * sizeof *l);
+        if (!l) return FFC_ERR_MEMORY;
+        st = ffc_mortar_search(p->tree, p->nfs, p->Fs, s->nv, s->x, p->o.qdeg, &p->o.search, cap, l, &need);
+        if (st < 0) { free(l); return st; }
+        free(p->links);
+        p->links = l;
+        p->lcap = cap;
+    }
+    if (st < 0) return st;
+    p->nl = st;
+    /* the dual basis of each facet from its consecutive links */
+    double(*xi)[2] = malloc((p->nl + 1) * sizeof *xi), *w = malloc((p->nl + 1) * sizeof *w);
+    if (!xi || !w) { free(xi); free(w); return FFC_ERR_MEMORY; }
+    for (long f = 0; f < p->nfs; f++)
+        for (int i = 0; i < 9; i++) p->dual[9 * f + i] = i % 4 == 0;
+    for (long a = 0; a < p->nl && st >= 0;) {
+        long b = a;
+        while (b < p->nl && p->links[b].sf == p->links[a].sf) b++;
+        for (long k = a; k < b; k++) {
+            xi[k - a][0] = p->links[k].xs[0];
+            xi[k - a][1] = p->links[k].xs[1];
+            w[k - a] = p->links[k].w;
+        }
+        double A[3][3];
+        int e = ffc_dual_basis(b - a, (const double(*)[2])xi, w, A);
+        if (e < 0) st = e;
+        else memcpy(p->dual + 9 * p->links[a].sf, A, sizeof A);
+        a = b;
+    }
+    free(xi);
+    free(w);
+    return st;
+}
+
 int ffc_scene_search(ffc_scene *s, const double u[], long *linked, long *bad)
 {
     long dummy;
@@ -383,13 +449,18 @@ int ffc_scene_search(ffc_scene *s, const double u[], long *linked, long *bad)
         /* the tree keeps its order and refits its boxes as the surfaces move */
         st = p->tree ? ffc_tree_refit(p->tree, s->x) : ffc_tree_build(s->nper, p->nfm, p->Fm, s->nv, s->x, &p->tree);
         if (st) { *bad = k; return st; }
-        st = ffc_search(p->tree, s->nper, p->nfs, p->Fs, s->nv, s->x, p->o.qdeg, &p->o.search, p->nl, p->links);
+        st = p->o.method == FFC_METHOD_MORTAR
+                 ? mortar_search(s, p)
+                 : ffc_search(p->tree, s->nper, p->nfs, p->Fs, s->nv, s->x, p->o.qdeg, &p->o.search, p->nl, p->links);
         if (st < 0) { *bad = k; return st; }
         total += st;
     }
     if (linked) *linked = total;
     return FFC_OK;
 }
+
+/* The rule the kernels take: the pair's, or 0 for segment links */
+static int pair_qdeg(const scene_pair *p) { return p->o.method == FFC_METHOD_MORTAR ? 0 : p->o.qdeg; }
 
 /* What the kernels take for one pair: its nodes, its law, its effects. */
 typedef struct {
@@ -427,6 +498,7 @@ static pair_call pair_view(const ffc_scene *s, const scene_pair *p, const double
     law->dt = s->dt;
     law->dvdu = s->dvdu;
     law->fixed = s->fixed;
+    law->dual = p->o.method == FFC_METHOD_MORTAR && p->o.dual ? p->dual : NULL;
     *fx = s->fx;
     fx->friction = p->o.mu > 0; /* a frictionless pair computes no friction term */
     return c;
@@ -470,7 +542,7 @@ int ffc_scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], 
         const long room = over ? 0 : cap - nt;
         long n = 0;
         ffc_stats old = p->st;
-        int st = ffc_assemble(&c.fx, &c.v, p->o.qdeg, p->nl, p->links, p->lam, p->lam_t, &c.law, R, room,
+        int st = ffc_assemble(&c.fx, &c.v, pair_qdeg(p), p->nl, p->links, p->lam, p->lam_t, &c.law, R, room,
                               tangent == FFC_TANGENT_NONE ? NULL : Ti + (over ? 0 : nt),
                               tangent == FFC_TANGENT_NONE ? NULL : Tj + (over ? 0 : nt),
                               tangent == FFC_TANGENT_NONE ? NULL : Tv + (over ? 0 : nt), &n, &p->st, bad);
@@ -494,7 +566,7 @@ int ffc_scene_augment(ffc_scene *s, const double u[], long *bad)
         scene_pair *p = &s->p[k];
         if (p->o.method == FFC_METHOD_NTS) continue;
         const pair_call c = pair_view(s, p, u, FFC_TANGENT_NONE);
-        int st = ffc_augment(&c.fx, &c.v, p->o.qdeg, p->nl, p->links, p->lam, p->lam_t, &c.law, &p->st, bad);
+        int st = ffc_augment(&c.fx, &c.v, pair_qdeg(p), p->nl, p->links, p->lam, p->lam_t, &c.law, &p->st, bad);
         if (st) return st;
     }
     return FFC_OK;
@@ -545,6 +617,7 @@ int ffc_scene_reset(ffc_scene *s)
         memset(&p->st, 0, sizeof p->st);
         memset(&p->st_step, 0, sizeof p->st_step);
         for (long l = 0; l < p->nl; l++) p->links[l].mf = -1;
+        if (p->o.method == FFC_METHOD_MORTAR) p->nl = 0;
         if (p->nodes) {
             int st = nts_alloc(s, p);
             if (st) return st;
@@ -643,13 +716,24 @@ long ffc_scene_nlinks(const ffc_scene *s, int pair)
     return n;
 }
 
+long ffc_scene_npoints(const ffc_scene *s, int pair)
+{
+    if (!s) return FFC_ERR_NULL;
+    if (pair < -1 || pair >= s->np) return FFC_ERR_INDEX;
+    long n = 0;
+    for (int k = 0; k < s->np; k++)
+        if (pair < 0 || k == pair)
+            n += s->p[k].o.method == FFC_METHOD_NTS ? s->p[k].nn : s->p[k].o.method == FFC_METHOD_MORTAR ? s->p[k].nsn : s->p[k].nl;
+    return n;
+}
+
 int ffc_scene_points(const ffc_scene *s, const double u[], int pair, long cap, double P[], long *n, long *bad)
 {
     long dummy;
     if (!bad) bad = &dummy;
     *bad = -1;
     if (!s || !u || !P || !n) return FFC_ERR_NULL;
-    const long need = ffc_scene_nlinks(s, pair);
+    const long need = ffc_scene_npoints(s, pair);
     if (need < 0) return (int)need;
     *n = need;
     if (cap < need) return FFC_ERR_CAPACITY;
@@ -664,7 +748,15 @@ int ffc_scene_points(const ffc_scene *s, const double u[], int pair, long cap, d
             continue;
         }
         const pair_call c = pair_view(s, p, u, FFC_TANGENT_NONE);
-        int st = ffc_points(&c.fx, &c.v, p->o.qdeg, p->nl, p->links, p->lam, p->lam_t, &c.law,
+        if (p->o.method == FFC_METHOD_MORTAR) {
+            long got;
+            int st = ffc_points_nodes(&c.fx, &c.v, 0, p->nl, p->links, p->lam, p->lam_t, &c.law, p->nsn,
+                                      P + row * FFC_POINT_COLS, &got, bad);
+            if (st) return st;
+            row += p->nsn;
+            continue;
+        }
+        int st = ffc_points(&c.fx, &c.v, pair_qdeg(p), p->nl, p->links, p->lam, p->lam_t, &c.law,
                             P + row * FFC_POINT_COLS, bad);
         if (st) return st;
         row += p->nl;

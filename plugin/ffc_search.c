@@ -592,3 +592,134 @@ int ffc_search_brute(const ffc_tree *t, int nns, long nfs, const long Fs[],
 {
     return search_common(t, nns, nfs, Fs, nvs, xs_nodes, qdeg, o, cap, links, 1);
 }
+
+/* Facets (tree slots) whose boxes overlap b[6], into out[cap]; returns
+ * their count (may exceed cap: only cap are written). */
+static long tree_overlap(const ffc_tree *t, const double b[6], long cap, long out[])
+{
+    long stack[STACK], n = 0;
+    int sp = 0;
+    stack[sp++] = 1;
+    while (sp > 0) {
+        const long i = stack[--sp];
+        const double *c = t->box + 6 * i;
+        if (c[0] > b[3] || c[1] > b[4] || c[2] > b[5] || c[3] < b[0] || c[4] < b[1] || c[5] < b[2]) continue;
+        if (i >= t->P) {
+            const long j = i - t->P;
+            for (long s = j * LEAF; s < (j + 1) * LEAF && s < t->nf; s++) {
+                const double *X = t->fx + s * t->nn * 3;
+                double fb[6];
+                facet_box(t->nn, X, fb);
+                if (fb[0] > b[3] || fb[1] > b[4] || fb[2] > b[5] || fb[3] < b[0] || fb[4] < b[1] || fb[5] < b[2])
+                    continue;
+                if (n < cap) out[n] = s;
+                n++;
+            }
+            continue;
+        }
+        stack[sp++] = 2 * i;
+        stack[sp++] = 2 * i + 1;
+    }
+    return n;
+}
+
+static void facet_normal(const double X[3][3], double n[3])
+{
+    const double a[3] = {X[1][0] - X[0][0], X[1][1] - X[0][1], X[1][2] - X[0][2]};
+    const double b[3] = {X[2][0] - X[0][0], X[2][1] - X[0][1], X[2][2] - X[0][2]};
+    ffc__cross(a, b, n);
+}
+
+#define MORTAR_PTS 96   /* points of one segment: <= 4 triangles x 12 (degree 6) */
+#define MORTAR_CAND 4096 /* master facets overlapping one slave facet's box */
+
+int ffc_mortar_search(const ffc_tree *t, long nfs, const long Fs[], long nvs, const double x[], int qdeg,
+                      const ffc_search_opts *o, long cap, ffc_link links[], long *need)
+{
+    long dummy;
+    if (!need) need = &dummy;
+    *need = 0;
+    if (!t || !Fs || !x || (cap > 0 && !links)) return FFC_ERR_NULL;
+    if (t->nn != 3) return FFC_ERR_NODES;
+    if (nfs <= 0) return FFC_ERR_EMPTY;
+    if (cap < 0 || t->nv > nvs) return FFC_ERR_SIZE;
+    ffc_search_opts def = ffc_search_defaults();
+    if (!o) o = &def;
+    if (!(o->capture_rel >= 0) || !(o->capture_abs >= 0) || !(o->edge_tol >= 0) || isinf(o->capture_rel) ||
+        isinf(o->capture_abs))
+        return FFC_ERR_VALUE;
+    if (ffc_quad_size(qdeg) < 0) return FFC_ERR_QUAD;
+    for (long k = 0; k < 3 * nfs; k++)
+        if (Fs[k] < 0 || Fs[k] >= nvs) return FFC_ERR_INDEX;
+    for (long k = 0; k < 3 * t->nf; k++)
+        if (t->F[k] < 0 || t->F[k] >= nvs) return FFC_ERR_INDEX;
+    const double rmax = fmax(o->capture_abs, o->capture_rel * t->hmax);
+    long n = 0, cand[MORTAR_CAND];
+    double xi[MORTAR_PTS][2], w[MORTAR_PTS];
+    for (long f = 0; f < nfs; f++) {
+        double Xs[3][3], ns[3], box[6];
+        for (int a = 0; a < 3; a++)
+            for (int i = 0; i < 3; i++) {
+                Xs[a][i] = x[3 * Fs[3 * f + a] + i];
+                if (!isfinite(Xs[a][i])) return FFC_ERR_NONFINITE;
+            }
+        facet_normal(Xs, ns);
+        facet_box(3, &Xs[0][0], box);
+        for (int i = 0; i < 3; i++) { box[i] -= rmax; box[3 + i] += rmax; }
+        const long nc = tree_overlap(t, box, MORTAR_CAND, cand);
+        if (nc > MORTAR_CAND) return FFC_ERR_SIZE;
+        for (long c = 0; c < nc; c++) {
+            const long mf = t->slot2f[cand[c]];
+            double Xm[3][3], nm[3];
+            for (int a = 0; a < 3; a++)
+                for (int i = 0; i < 3; i++) {
+                    Xm[a][i] = x[3 * t->F[3 * mf + a] + i];
+                    if (!isfinite(Xm[a][i])) return FFC_ERR_NONFINITE;
+                }
+            facet_normal(Xm, nm);
+            if (!(ffc__dot(ns, nm) < 0)) continue; /* not facing */
+            double cov;
+            const int np = ffc_mortar_segment(qdeg, (const double(*)[3])Xs, (const double(*)[3])Xm, MORTAR_PTS, xi,
+                                              w, &cov);
+            if (np < 0) return np;
+            if (np == 0) continue;
+            /* capture: the distance from the segment's centre to the master plane */
+            double xc[2] = {0, 0}, ws = 0;
+            for (int q = 0; q < np; q++) {
+                xc[0] += w[q] * xi[q][0];
+                xc[1] += w[q] * xi[q][1];
+                ws += w[q];
+            }
+            xc[0] /= ws;
+            xc[1] /= ws;
+            double pc[3];
+            for (int i = 0; i < 3; i++)
+                pc[i] = Xs[0][i] + xc[0] * (Xs[1][i] - Xs[0][i]) + xc[1] * (Xs[2][i] - Xs[0][i]);
+            ffc_proj pr;
+            int st = ffc__project_free(3, (const double(*)[3])Xm, pc, &pr);
+            if (st < 0) return st;
+            if (fabs(pr.gap) > fmax(o->capture_abs, o->capture_rel * t->hf[mf])) continue;
+            for (int q = 0; q < np; q++, n++) {
+                if (n >= cap) continue;
+                double p[3];
+                for (int i = 0; i < 3; i++)
+                    p[i] = Xs[0][i] + xi[q][0] * (Xs[1][i] - Xs[0][i]) + xi[q][1] * (Xs[2][i] - Xs[0][i]);
+                if ((st = ffc__project_free(3, (const double(*)[3])Xm, p, &pr)) < 0) return st;
+                ffc_link *lk = &links[n];
+                lk->sf = f;
+                lk->q = -1;
+                lk->xs[0] = xi[q][0];
+                lk->xs[1] = xi[q][1];
+                lk->w = w[q];
+                lk->mf = mf;
+                lk->xm[0] = pr.xi[0];
+                lk->xm[1] = pr.xi[1];
+                lk->gap = pr.gap;
+                for (int i = 0; i < 3; i++) lk->n[i] = pr.n[i];
+                lk->where = FFC_FOOT_INSIDE;
+            }
+        }
+    }
+    *need = n;
+    return n > cap ? FFC_ERR_CAPACITY : (n <= 2147483647L ? (int)n : FFC_ERR_SIZE);
+}

@@ -747,31 +747,37 @@ KN<long> side_labels(const char *fn, const char *arg, KN<long> *l)
 
 // The pair options of the named arguments (from o, the current ones).
 enum { PO_METHOD, PO_MU, PO_EPSN, PO_EPST, PO_QDEG, PO_NODAL, PO_CREL, PO_CABS, PO_MUD, PO_GTOL, PO_FTOL, PO_FLIPS,
-       PO_SCALE, PO_N };
+       PO_SCALE, PO_DUAL, PO_N };
 basicAC_F0::name_and_type pair_names[] = {
     {"method", &typeid(string *)}, {"mu", &typeid(double)},   {"epsN", &typeid(double)}, {"epsT", &typeid(double)},
     {"qdeg", &typeid(long)},       {"nodal", &typeid(long)},  {"crel", &typeid(double)}, {"cabs", &typeid(double)},
     {"muD", &typeid(double)},      {"gtol", &typeid(double)}, {"ftol", &typeid(double)}, {"maxFlips", &typeid(long)},
-    {"scale", &typeid(double)}};
+    {"scale", &typeid(double)},    {"dual", &typeid(long)}};
+
+const char *method_name(int m) { return m == FFC_METHOD_NTS ? "nts" : m == FFC_METHOD_MORTAR ? "mortar" : "al"; }
 
 ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &d, ffc_pair_opts o)
 {
-    const std::string method = nm.str(PO_METHOD, o.method == FFC_METHOD_NTS ? "nts" : "al");
-    if (method != "al" && method != "nts") {
+    const std::string method = nm.str(PO_METHOD, method_name(o.method));
+    if (method != "al" && method != "nts" && method != "mortar") {
         std::ostringstream s;
-        s << "argument 'method': \"" << method << "\" is not a method of scenes (\"al\": augmented Lagrangian, \"nts\": node-to-surface)";
+        s << "argument 'method': \"" << method << "\" is not a method of scenes (\"al\": augmented Lagrangian, \"nts\": "
+             "node-to-surface, \"mortar\": segment-to-segment)";
         fail(fn, s.str());
     }
-    const int m = method == "nts" ? FFC_METHOD_NTS : FFC_METHOD_AL;
-    if (m == FFC_METHOD_NTS && d.order != 1)
-        fail(fn, "argument 'method': \"nts\" takes linear facets only: a scene of order 1 ([P1,P1,P1])");
+    const int m = method == "nts" ? FFC_METHOD_NTS : method == "mortar" ? FFC_METHOD_MORTAR : FFC_METHOD_AL;
+    if (m != FFC_METHOD_AL && d.order != 1)
+        fail(fn, "argument 'method': \"" + method + "\" takes linear facets only: a scene of order 1 ([P1,P1,P1])");
+    // a new mortar pair integrates each segment triangle with the degree-2 rule (exact for the products of
+    // linear shape functions that its small-strain integrals are)
+    if (m == FFC_METHOD_MORTAR && o.method != FFC_METHOD_MORTAR && !nm.has(PO_QDEG)) o.qdeg = 2;
     if (fn == std::string("ffcSetPair")) {
         if (m != o.method) fail(fn, "argument 'method': a pair keeps the method it was added with");
     } else if (ffc_scene_npairs(d.s) > 0) {
         ffc_pair_opts o0;
         ffc_scene_pair_opts(d.s, 0, &o0);
         if (o0.method != m)
-            fail(fn, "argument 'method': \"" + method + "\", but pair 0 uses \"" + (o0.method == FFC_METHOD_NTS ? "nts" : "al") +
+            fail(fn, "argument 'method': \"" + method + "\", but pair 0 uses \"" + method_name(o0.method) +
                          "\": the pairs of a scene share one method");
     }
     o.method = m;
@@ -785,6 +791,7 @@ ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &
     o.eps_t = nm.real(PO_EPST, o.eps_t);
     o.qdeg = (int)nm.integer(PO_QDEG, o.qdeg);
     o.nodal = (int)nm.integer(PO_NODAL, o.nodal);
+    o.dual = (int)nm.integer(PO_DUAL, o.dual);
     o.search.capture_rel = nm.real(PO_CREL, o.search.capture_rel);
     o.search.capture_abs = nm.real(PO_CABS, o.search.capture_abs);
     auto bad = [&](int i, double v, const char *why) {
@@ -803,6 +810,8 @@ ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &
     if (!(o.eps_t >= 0) || std::isinf(o.eps_t)) bad(PO_EPST, o.eps_t, "must be finite and >= 0 (tangential penalty; 0: epsN)");
     if (ffc_quad_size(o.qdeg) < 0) bad(PO_QDEG, o.qdeg, "is not a quadrature degree (1..6)");
     if (o.nodal != 0 && o.nodal != 1) bad(PO_NODAL, o.nodal, "must be 1 (multipliers at slave nodes) or 0 (at quadrature points)");
+    if (m == FFC_METHOD_MORTAR && o.nodal != 1) bad(PO_NODAL, o.nodal, "must be 1 with method \"mortar\" (its multipliers live at the slave nodes)");
+    if (o.dual != 0 && o.dual != 1) bad(PO_DUAL, o.dual, "must be 1 (dual multipliers) or 0 (standard)");
     if (!(o.search.capture_rel >= 0) || std::isinf(o.search.capture_rel)) bad(PO_CREL, o.search.capture_rel, "must be finite and >= 0");
     if (!(o.search.capture_abs >= 0) || std::isinf(o.search.capture_abs)) bad(PO_CABS, o.search.capture_abs, "must be finite and >= 0");
     if (std::isnan(o.mu_d) || std::isinf(o.mu_d) || o.mu_d > o.mu)
@@ -916,12 +925,15 @@ double pairOption(const Named &, FFScene *const &C, long const &k, string *const
     if (n == "crel") return o.search.capture_rel;
     if (n == "cabs") return o.search.capture_abs;
     if (n == "nts") return o.method == FFC_METHOD_NTS;
+    if (n == "mortar") return o.method == FFC_METHOD_MORTAR;
+    if (n == "dual") return o.dual;
     if (n == "muD") return o.mu_d;
     if (n == "gtol") return o.gtol;
     if (n == "ftol") return o.ftol;
     if (n == "maxFlips") return o.max_flips;
     if (n == "scale") return o.scale;
-    fail(fn, "argument 'name': \"" + n + "\" is not an option of a pair (mu, epsN, epsT, qdeg, nodal, crel, cabs, nts, muD, gtol, ftol, maxFlips, scale)");
+    fail(fn, "argument 'name': \"" + n + "\" is not an option of a pair (mu, epsN, epsT, qdeg, nodal, crel, cabs, nts, mortar, dual, muD, gtol, ftol, "
+                "maxFlips, scale)");
 }
 
 long nPairs(const Named &, FFScene *const &C) { return ffc_scene_npairs(need_scene("ffcPairs", C).s); }
@@ -1140,7 +1152,7 @@ double sceneStat(const Named &nm, FFScene *const &C, string *const &name)
     return v;
 }
 
-// ffcPoints(C, u, P, pair = -1): one row per slave point (columns of
+// ffcPoints(C, u, P, pair = -1): one row per slave point (mortar: per slave node; columns of
 // ffc_points: x, y, z, gap, pressure, active, area, master facet, traction
 // x, y, z, friction state, dissipation); returns the rows.
 long scenePoints(const Named &nm, FFScene *const &C, KN<double> *const &u, KNM<double> *const &P)
@@ -1150,7 +1162,7 @@ long scenePoints(const Named &nm, FFScene *const &C, KN<double> *const &u, KNM<d
     const int k = need_pair_index(fn, d, nm.integer(0, -1), true);
     const double *pu = need_scene_u(fn, d, u);
     if (!P) fail(fn, "argument 'P': array is not defined");
-    const long n = ffc_scene_nlinks(d.s, k);
+    const long n = ffc_scene_npoints(d.s, k);
     std::vector<double> rows(n * FFC_POINT_COLS + 1);
     long got = 0, bad = -1;
     int st = ffc_scene_points(d.s, pu, k, n, rows.data(), &got, &bad);

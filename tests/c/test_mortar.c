@@ -1,0 +1,506 @@
+/* test_mortar.c: segment-to-segment integration: polygon clipping against
+ * an independent construction, segment coverage, the dual basis, the
+ * consistent loads of a uniform pressure through non-matching meshes, and
+ * the assembled tangent of segment links against central differences. */
+#include "ffc_test.h"
+
+/* ------------------------------------------------------------- clipping */
+static double shoelace(int n, const double p[][2])
+{
+    double a = 0;
+    for (int i = 0; i < n; i++) a += p[i][0] * p[(i + 1) % n][1] - p[(i + 1) % n][0] * p[i][1];
+    return 0.5 * a;
+}
+
+static int inside_tri(const double t[3][2], const double p[2])
+{
+    for (int i = 0; i < 3; i++) {
+        const double *a = t[i], *b = t[(i + 1) % 3];
+        if ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) < 0) return 0;
+    }
+    return 1;
+}
+
+/* The intersection of two triangles built another way: the candidate
+ * vertices (each triangle's vertices inside the other, every crossing of
+ * two edges), sorted by angle around their mean; its area. */
+static double independent_area(const double a[3][2], const double b[3][2])
+{
+    double v[32][2], c[2] = {0, 0};
+    int n = 0;
+    for (int i = 0; i < 3; i++) {
+        if (inside_tri(b, a[i])) { v[n][0] = a[i][0]; v[n][1] = a[i][1]; n++; }
+        if (inside_tri(a, b[i])) { v[n][0] = b[i][0]; v[n][1] = b[i][1]; n++; }
+    }
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            const double *p = a[i], *q = a[(i + 1) % 3], *r = b[j], *s = b[(j + 1) % 3];
+            const double d1[2] = {q[0] - p[0], q[1] - p[1]}, d2[2] = {s[0] - r[0], s[1] - r[1]};
+            const double den = d1[0] * d2[1] - d1[1] * d2[0];
+            if (fabs(den) < 1e-300) continue;
+            const double t = ((r[0] - p[0]) * d2[1] - (r[1] - p[1]) * d2[0]) / den;
+            const double u = ((r[0] - p[0]) * d1[1] - (r[1] - p[1]) * d1[0]) / den;
+            if (t < 0 || t > 1 || u < 0 || u > 1) continue;
+            v[n][0] = p[0] + t * d1[0];
+            v[n][1] = p[1] + t * d1[1];
+            n++;
+        }
+    if (n < 3) return 0.0;
+    for (int i = 0; i < n; i++) { c[0] += v[i][0] / n; c[1] += v[i][1] / n; }
+    for (int i = 1; i < n; i++) /* insertion sort by angle */
+        for (int j = i; j > 0 && atan2(v[j][1] - c[1], v[j][0] - c[0]) < atan2(v[j - 1][1] - c[1], v[j - 1][0] - c[0]);
+             j--) {
+            double t0 = v[j][0], t1 = v[j][1];
+            v[j][0] = v[j - 1][0]; v[j][1] = v[j - 1][1];
+            v[j - 1][0] = t0; v[j - 1][1] = t1;
+        }
+    return shoelace(n, (const double(*)[2])v);
+}
+
+static void random_tri(uint64_t *s, double t[3][2])
+{
+    do {
+        for (int i = 0; i < 3; i++) { t[i][0] = test_rand(s, 0, 1); t[i][1] = test_rand(s, 0, 1); }
+    } while (fabs(shoelace(3, (const double(*)[2])t)) < 1e-3);
+    if (shoelace(3, (const double(*)[2])t) < 0) {
+        double x = t[1][0], y = t[1][1];
+        t[1][0] = t[2][0]; t[1][1] = t[2][1];
+        t[2][0] = x; t[2][1] = y;
+    }
+}
+
+/* random overlapping triangles: the clipped area against the independent
+ * construction (round-off: 1e-13 of the unit box), convex and inside both */
+static void test_clip_random(void **state)
+{
+    (void)state;
+    uint64_t s = 7;
+    int overlapping = 0;
+    for (int k = 0; k < 2000; k++) {
+        double a[3][2], b[3][2], out[8][2];
+        random_tri(&s, a);
+        random_tri(&s, b);
+        const int n = ffc_clip_polygon(3, (const double(*)[2])a, 3, (const double(*)[2])b, 8, out);
+        assert_true(n >= 0);
+        const double A = n ? shoelace(n, (const double(*)[2])out) : 0.0, B = independent_area(a, b);
+        assert_close(A, B, 1e-13);
+        overlapping += n > 0;
+        for (int i = 0; i < n; i++) {
+            const double *p = out[i], *q = out[(i + 1) % n], *r = out[(i + 2) % n];
+            assert_true((q[0] - p[0]) * (r[1] - q[1]) - (q[1] - p[1]) * (r[0] - q[0]) > -1e-13); /* convex, ccw */
+        }
+    }
+    assert_true(overlapping > 500);
+    /* a triangle inside the other: itself; disjoint: nothing */
+    const double big[3][2] = {{-1, -1}, {3, -1}, {-1, 3}}, small[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+    const double far[3][2] = {{5, 5}, {6, 5}, {5, 6}};
+    double out[8][2];
+    assert_int_equal(ffc_clip_polygon(3, small, 3, big, 8, out), 3);
+    assert_close(shoelace(3, (const double(*)[2])out), 0.5, 1e-15);
+    assert_int_equal(ffc_clip_polygon(3, small, 3, far, 8, out), 0);
+    /* sharing an edge only: no overlap */
+    const double nb[3][2] = {{1, 0}, {1, 1}, {0, 1}};
+    assert_int_equal(ffc_clip_polygon(3, small, 3, nb, 8, out), 0);
+}
+
+static void test_clip_bad_input(void **state)
+{
+    (void)state;
+    const double t[3][2] = {{0, 0}, {1, 0}, {0, 1}}, cw[3][2] = {{0, 0}, {0, 1}, {1, 0}};
+    const double nan_t[3][2] = {{0, 0}, {NAN, 0}, {0, 1}};
+    double out[8][2];
+    assert_int_equal(ffc_clip_polygon(3, NULL, 3, t, 8, out), FFC_ERR_NULL);
+    assert_int_equal(ffc_clip_polygon(2, t, 3, t, 8, out), FFC_ERR_SIZE);
+    assert_int_equal(ffc_clip_polygon(3, t, 3, t, 5, out), FFC_ERR_CAPACITY);
+    assert_int_equal(ffc_clip_polygon(3, t, 3, cw, 8, out), FFC_ERR_DEGENERATE);
+    assert_int_equal(ffc_clip_polygon(3, t, 3, nan_t, 8, out), FFC_ERR_NONFINITE);
+    double xi[4][2], w[4], cov;
+    const double Xs[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, Xm[3][3] = {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}};
+    assert_int_equal(ffc_mortar_segment(7, Xs, Xm, 4, xi, w, &cov), FFC_ERR_QUAD);
+    assert_int_equal(ffc_mortar_segment(2, Xs, Xm, 2, xi, w, &cov), FFC_ERR_CAPACITY);
+    assert_int_equal(ffc_mortar_segment(2, Xs, Xm, 4, xi, w, &cov), 3);
+    assert_close(cov, 0.5, 1e-15);
+}
+
+/* ---------------------------------------------------------- flat meshes */
+/* An n x n grid of the unit square at height z, each cell cut in two
+ * (diagonal alternating with shift), rotated by ang about the square's
+ * centre and shrunk by scale; normal up (+z) or down. */
+static long grid(int n, double z, double ang, double scale, int up, int shift, long v0, double X[], long F[])
+{
+    long v = v0;
+    const double c = cos(ang), s = sin(ang);
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++, v++) {
+            const double x = scale * ((double)i / n - 0.5), y = scale * ((double)j / n - 0.5);
+            X[3 * v] = 0.5 + c * x - s * y;
+            X[3 * v + 1] = 0.5 + s * x + c * y;
+            X[3 * v + 2] = z;
+        }
+    long f = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            const long a = v0 + j * (n + 1) + i, b = a + 1, d = a + n + 1, e = d + 1;
+            long t[6];
+            if ((i + j + shift) % 2) { long u[6] = {a, b, e, a, e, d}; memcpy(t, u, sizeof t); }
+            else { long u[6] = {a, b, d, b, e, d}; memcpy(t, u, sizeof t); }
+            if (!up)
+                for (int k = 0; k < 6; k += 3) { long x = t[k + 1]; t[k + 1] = t[k + 2]; t[k + 2] = x; }
+            memcpy(F + 6 * f, t, sizeof t);
+            f++;
+        }
+    return v;
+}
+
+/* coverage: the segments of each slave facet of a fine grid over a coarse
+ * non-matching grid (all inside it) sum to the facet's area, 1/2 in local
+ * coordinates, and so do their weights */
+static void test_segment_coverage(void **state)
+{
+    (void)state;
+    enum { NM = 3, NS = 7 };
+    static double X[3 * ((NM + 1) * (NM + 1) + (NS + 1) * (NS + 1))];
+    static long Fm[6 * NM * NM], Fs[6 * NS * NS];
+    const long nv0 = grid(NM, 0.0, 0.0, 1.0, 1, 0, 0, X, Fm);
+    grid(NS, 0.0, 0.3, 0.7, 0, 1, nv0, X, Fs);
+    for (long f = 0; f < 2 * NS * NS; f++) {
+        double Xs[3][3], sum = 0, wsum = 0;
+        for (int a = 0; a < 3; a++) memcpy(Xs[a], X + 3 * Fs[3 * f + a], sizeof Xs[a]);
+        for (long g = 0; g < 2 * NM * NM; g++) {
+            double Xm[3][3], xi[96][2], w[96], cov;
+            for (int a = 0; a < 3; a++) memcpy(Xm[a], X + 3 * Fm[3 * g + a], sizeof Xm[a]);
+            const int n = ffc_mortar_segment(2, (const double(*)[3])Xs, (const double(*)[3])Xm, 96, xi, w, &cov);
+            assert_true(n >= 0);
+            sum += cov;
+            for (int q = 0; q < n; q++) {
+                wsum += w[q];
+                assert_true(xi[q][0] >= -1e-14 && xi[q][1] >= -1e-14 && xi[q][0] + xi[q][1] <= 1 + 1e-14);
+            }
+        }
+        assert_close(sum, 0.5, 1e-14);
+        assert_close(wsum, 0.5, 1e-14);
+    }
+}
+
+/* the dual basis: 4 N_a - 1 on a full facet; biorthogonal on a partly
+ * covered one; the standard basis for a sliver */
+static void test_dual_basis(void **state)
+{
+    (void)state;
+    const double Xs[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    const double full[3][3] = {{-1, -1, 1}, {3, -1, 1}, {-1, 3, 1}};
+    const double part[3][3] = {{0.2, -0.5, 1}, {2, 0.1, 1}, {0.1, 0.4, 1}}; /* clockwise seen from +z: facing */
+    double xi[96][2], w[96], cov, A[3][3];
+    int n = ffc_mortar_segment(2, Xs, full, 96, xi, w, &cov);
+    assert_true(n > 0);
+    assert_int_equal(ffc_dual_basis(n, (const double(*)[2])xi, w, A), FFC_OK);
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) assert_close(A[a][b], a == b ? 3.0 : -1.0, 1e-12);
+    n = ffc_mortar_segment(2, Xs, part, 96, xi, w, &cov);
+    assert_true(n > 0 && cov < 0.45 && cov > 0.05);
+    assert_int_equal(ffc_dual_basis(n, (const double(*)[2])xi, w, A), FFC_OK);
+    double D[3] = {0}, M[3][3] = {{0}};
+    for (int q = 0; q < n; q++) {
+        const double N[3] = {1 - xi[q][0] - xi[q][1], xi[q][0], xi[q][1]};
+        for (int a = 0; a < 3; a++) {
+            const double Phi = A[a][0] * N[0] + A[a][1] * N[1] + A[a][2] * N[2];
+            D[a] += w[q] * N[a];
+            for (int b = 0; b < 3; b++) M[a][b] += w[q] * Phi * N[b];
+        }
+    }
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) assert_close(M[a][b], a == b ? D[a] : 0.0, 1e-14);
+    const double sliver[1][2] = {{0.5, 0.5}}, ws[1] = {0.1};
+    assert_int_equal(ffc_dual_basis(1, sliver, ws, A), FFC_OK);
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) assert_close(A[a][b], a == b, 0.0);
+}
+
+/* ------------------------------------- uniform pressure through a mesh */
+/* Two coplanar non-matching grids, the slave's multipliers all p and no
+ * gap: the assembled residual on the master's nodes is the consistent
+ * load of a uniform pressure, p times the integral of each master shape
+ * function over the master square (all of it covered) computed
+ * independently as p A / 3 per facet vertex, to round-off; on the
+ * slave's, -p A / 3 likewise (dual and standard multipliers).  The same
+ * with the pointwise links of a facet rule (ffc_search) misses: the
+ * master shape functions kink inside slave facets. */
+static void test_uniform_pressure(void **state)
+{
+    (void)state;
+    enum { NM = 3, NS = 8, NVM = (NM + 1) * (NM + 1), NV = NVM + (NS + 1) * (NS + 1) };
+    static double X[3 * NV], u[3 * NV], R[3 * NV], lam[NV], ref[3 * NV];
+    static long Fm[6 * NM * NM], Fs[6 * NS * NS];
+    grid(NM, 0.0, 0.0, 1.0, 1, 0, 0, X, Fm);
+    grid(NS, 0.0, 0.0, 1.0, 0, 1, NVM, X, Fs);
+    /* the slave square slightly larger than the master one would leave its
+     * rim uncovered; equal squares, non-matching inside */
+    const double p = 2.5;
+    memset(ref, 0, sizeof ref);
+    for (long f = 0; f < 2 * NM * NM; f++)
+        for (int a = 0; a < 3; a++) ref[3 * Fm[3 * f + a] + 2] = 0; /* set below */
+    for (int side = 0; side < 2; side++) {
+        const long nf = side ? 2 * NS * NS : 2 * NM * NM, *F = side ? Fs : Fm;
+        for (long f = 0; f < nf; f++) {
+            const double *x0 = X + 3 * F[3 * f], *x1 = X + 3 * F[3 * f + 1], *x2 = X + 3 * F[3 * f + 2];
+            const double A = 0.5 * fabs((x1[0] - x0[0]) * (x2[1] - x0[1]) - (x1[1] - x0[1]) * (x2[0] - x0[0]));
+            for (int a = 0; a < 3; a++) ref[3 * F[3 * f + a] + 2] += (side ? -1.0 : 1.0) * p * A / 3.0;
+        }
+    }
+    /* sign: the pressure pushes the slave (above, normal down) up and the master down */
+    ffc_tree *t;
+    assert_int_equal(ffc_tree_build(3, 2 * NM * NM, Fm, NV, X, &t), FFC_OK);
+    static ffc_link L[20000];
+    long need;
+    const int nl = ffc_mortar_search(t, 2 * NS * NS, Fs, NV, X, 2, NULL, 20000, L, &need);
+    assert_true(nl > 0);
+    assert_int_equal(need, nl);
+    static double dual[9 * 2 * NS * NS];
+    for (long a = 0; a < nl;) {
+        long b = a;
+        while (b < nl && L[b].sf == L[a].sf) b++;
+        double xi[512][2], w[512], A[3][3];
+        for (long k = a; k < b; k++) { xi[k - a][0] = L[k].xs[0]; xi[k - a][1] = L[k].xs[1]; w[k - a] = L[k].w; }
+        assert_int_equal(ffc_dual_basis(b - a, (const double(*)[2])xi, w, A), FFC_OK);
+        memcpy(dual + 9 * L[a].sf, A, sizeof A);
+        a = b;
+    }
+    for (long v = NVM; v < NV; v++) lam[v] = p;
+    ffc_pair P = {3, 2 * NS * NS, Fs, 3, 2 * NM * NM, Fm, NV, X, u, NULL, NULL};
+    ffc_effects fx = {0, 0, 0};
+    for (int d = 0; d <= 1; d++) {
+        ffc_law law = {1e3, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, d ? dual : NULL};
+        long nt, bad;
+        memset(R, 0, sizeof R);
+        assert_int_equal(ffc_assemble(&fx, &P, 0, nl, L, lam, NULL, &law, R, 0, NULL, NULL, NULL, &nt, NULL, &bad),
+                         FFC_OK);
+        for (long k = 0; k < 3 * NV; k++) assert_close(R[k], ref[k], 1e-14 * p);
+    }
+    /* the pointwise rule of degree 2 on the same meshes */
+    enum { NQ = 3, NLQ = 2 * NS * NS * NQ };
+    static ffc_link Lq[NLQ];
+    assert_int_equal(ffc_search(t, 3, 2 * NS * NS, Fs, NV, X, 2, NULL, NLQ, Lq), NLQ);
+    ffc_law law = {1e3, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL};
+    long nt, bad;
+    memset(R, 0, sizeof R);
+    assert_int_equal(ffc_assemble(&fx, &P, 2, NLQ, Lq, lam, NULL, &law, R, 0, NULL, NULL, NULL, &nt, NULL, &bad), FFC_OK);
+    double err = 0;
+    for (long k = 0; k < 3 * NVM; k++) err = fmax(err, fabs(R[k] - ref[k]));
+    assert_true(err > 1e-3 * p / (NM * NM)); /* the facet rule misses the master loads */
+    ffc_tree_free(t);
+}
+
+/* ------------------------------------------------- assembled tangents */
+enum { TNV = 41, TNFM = 32, TNFS = 18, TCAP = 400000 };
+
+typedef struct {
+    double X[TNV * 3], u[TNV * 3], up[TNV * 3];
+    long Fm[TNFM * 3], Fs[TNFS * 3];
+    ffc_link L[4000];
+    long nl;
+    double lam[TNV], lam_t[TNV * 3], dual[9 * TNFS];
+    ffc_pair P;
+} mscene;
+
+static void mscene_make(mscene *a, uint64_t *s)
+{
+    test_pair_scene(a->X, a->Fm, a->Fs);
+    double x[TNV * 3];
+    for (int i = 0; i < TNV * 3; i++) {
+        a->u[i] = test_rand(s, -0.002, 0.002);
+        a->up[i] = a->u[i] - test_rand(s, -0.003, 0.003);
+    }
+    for (int v = 25; v < TNV; v++) a->u[3 * v + 2] -= 0.004;
+    for (int i = 0; i < TNV * 3; i++) x[i] = a->X[i] + a->u[i];
+    ffc_tree *t;
+    assert_int_equal(ffc_tree_build(3, TNFM, a->Fm, TNV, x, &t), FFC_OK);
+    long need;
+    const int nl = ffc_mortar_search(t, TNFS, a->Fs, TNV, x, 2, NULL, 4000, a->L, &need);
+    assert_true(nl > TNFS * 3); /* more points than the facet rule: the segments */
+    a->nl = nl;
+    ffc_tree_free(t);
+    for (long f = 0; f < 9 * TNFS; f++) a->dual[f] = f % 4 == 0; /* overwritten for facets with links */
+    for (long b0 = 0; b0 < nl;) {
+        long b = b0;
+        while (b < nl && a->L[b].sf == a->L[b0].sf) b++;
+        double xi[1024][2], w[1024], A[3][3];
+        for (long k = b0; k < b; k++) { xi[k - b0][0] = a->L[k].xs[0]; xi[k - b0][1] = a->L[k].xs[1]; w[k - b0] = a->L[k].w; }
+        assert_int_equal(ffc_dual_basis(b - b0, (const double(*)[2])xi, w, A), FFC_OK);
+        memcpy(a->dual + 9 * a->L[b0].sf, A, sizeof A);
+        b0 = b;
+    }
+    for (int k = 0; k < TNV; k++) a->lam[k] = k < 25 ? 0.0 : test_rand(s, 0.0, 0.3);
+    for (int k = 0; k < TNV * 3; k++) a->lam_t[k] = test_rand(s, -0.05, 0.05);
+    ffc_pair P = {3, TNFS, a->Fs, 3, TNFM, a->Fm, TNV, a->X, a->u, a->up, NULL};
+    a->P = P;
+}
+
+/* Central differences (h = 1e-7 against displacements ~1e-3) of the
+ * assembled residual of segment links at fixed segments, against the
+ * tangent: relative 1e-6 (the differences' truncation and round-off) */
+static void check_tangent(mscene *a, const ffc_effects *fx, const ffc_law *law, int regime)
+{
+    static double K[TNV * 3][TNV * 3];
+    long *Ti = malloc(TCAP * sizeof *Ti), *Tj = malloc(TCAP * sizeof *Tj), nt, bad;
+    double *Tv = malloc(TCAP * sizeof *Tv), R[TNV * 3] = {0};
+    ffc_stats st;
+    assert_int_equal(ffc_assemble(fx, &a->P, 0, a->nl, a->L, a->lam, a->lam_t, law, R, TCAP, Ti, Tj, Tv, &nt, &st, &bad),
+                     FFC_OK);
+    memset(K, 0, sizeof K);
+    for (long k = 0; k < nt; k++) K[Ti[k]][Tj[k]] += Tv[k];
+    free(Ti); free(Tj); free(Tv);
+    if (regime == FFC_FRIC_OPEN) {
+        assert_int_equal(st.active, 0);
+        assert_int_equal(nt, 0);
+    } else {
+        assert_true(st.active > 0);
+        if (fx->friction) {
+            assert_true((regime == FFC_FRIC_STICK ? st.stick : st.slip) > 0);
+            assert_int_equal(regime == FFC_FRIC_STICK ? st.slip : st.stick, 0);
+        }
+    }
+    const double h = 1e-7;
+    double err = 0, scale = 0;
+    for (int l = 0; l < TNV * 3; l++) {
+        double Rp[TNV * 3] = {0}, Rm[TNV * 3] = {0}, u0 = a->u[l];
+        ffc_stats sp, sm;
+        a->u[l] = u0 + h;
+        assert_int_equal(ffc_assemble(fx, &a->P, 0, a->nl, a->L, a->lam, a->lam_t, law, Rp, 0, NULL, NULL, NULL, &nt,
+                                      &sp, &bad), FFC_OK);
+        a->u[l] = u0 - h;
+        assert_int_equal(ffc_assemble(fx, &a->P, 0, a->nl, a->L, a->lam, a->lam_t, law, Rm, 0, NULL, NULL, NULL, &nt,
+                                      &sm, &bad), FFC_OK);
+        a->u[l] = u0;
+        assert_int_equal(sp.active, st.active);
+        assert_int_equal(sm.active, st.active);
+        for (int k = 0; k < TNV * 3; k++) {
+            err = fmax(err, fabs((Rp[k] - Rm[k]) / (2 * h) - K[k][l]));
+            scale = fmax(scale, fabs(K[k][l]));
+            if (regime == FFC_FRIC_OPEN) assert_true(Rp[k] == 0.0 && Rm[k] == 0.0);
+        }
+    }
+    if (!(err <= 1e-6 * scale))
+        fail_msg("segment tangent error %.3g of scale %.3g (friction %d, finite %d, dual %d)", err, scale, fx->friction,
+                 fx->finite_def, law->dual != NULL);
+}
+
+static void test_segment_tangent(void **state)
+{
+    (void)state;
+    uint64_t s = 41;
+    mscene *a = malloc(sizeof *a);
+    mscene_make(a, &s);
+    for (int finite = 0; finite <= 1; finite++)
+        for (int d = 0; d <= 1; d++) {
+            const double *dual = d ? a->dual : NULL;
+            ffc_effects fr = {0, 0, finite}, fc = {1, 0, finite};
+            ffc_law normal = {60, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, dual};
+            check_tangent(a, &fr, &normal, FFC_FRIC_STICK);
+            ffc_law stick = {60, 1, 0, 1e6, 5.0, 0.0, 0.0, NULL, dual};
+            check_tangent(a, &fc, &stick, FFC_FRIC_STICK);
+            ffc_law slip = {60, 1, 0, 0.3, 2000.0, 0.0, 0.0, NULL, dual};
+            check_tangent(a, &fc, &slip, FFC_FRIC_SLIP);
+        }
+    /* separated: the slave lifted off, no multipliers: nothing, exactly */
+    for (int v = 25; v < TNV; v++) a->u[3 * v + 2] += 0.05;
+    for (int k = 0; k < TNV; k++) a->lam[k] = 0.0;
+    ffc_effects fc = {1, 0, 0};
+    ffc_law stick = {60, 1, 0, 1e6, 5.0, 0.0, 0.0, NULL, a->dual};
+    check_tangent(a, &fc, &stick, FFC_FRIC_OPEN);
+    free(a);
+}
+
+/* a rigid translation changes no weighted gap: the frictionless tangent
+ * (small strain) times a translation is zero, and the residual's slave
+ * and master forces balance */
+static void test_translation(void **state)
+{
+    (void)state;
+    uint64_t s = 43;
+    mscene *a = malloc(sizeof *a);
+    mscene_make(a, &s);
+    static double K[TNV * 3][TNV * 3];
+    long *Ti = malloc(TCAP * sizeof *Ti), *Tj = malloc(TCAP * sizeof *Tj), nt, bad;
+    double *Tv = malloc(TCAP * sizeof *Tv), R[TNV * 3] = {0};
+    ffc_effects fx = {0, 0, 0};
+    ffc_law law = {60, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, a->dual};
+    assert_int_equal(ffc_assemble(&fx, &a->P, 0, a->nl, a->L, a->lam, NULL, &law, R, TCAP, Ti, Tj, Tv, &nt, NULL, &bad),
+                     FFC_OK);
+    memset(K, 0, sizeof K);
+    for (long k = 0; k < nt; k++) K[Ti[k]][Tj[k]] += Tv[k];
+    double scale = 0, tot[3] = {0, 0, 0}, rs = 0;
+    for (int i = 0; i < 3 * TNV; i++) {
+        tot[i % 3] += R[i];
+        rs = fmax(rs, fabs(R[i]));
+        for (int j = 0; j < 3 * TNV; j++) scale = fmax(scale, fabs(K[i][j]));
+    }
+    assert_true(rs > 0);
+    for (int c = 0; c < 3; c++) {
+        assert_close(tot[c], 0.0, 1e-13 * rs * TNV);
+        for (int i = 0; i < 3 * TNV; i++) {
+            double Kt = 0;
+            for (int v = 0; v < TNV; v++) Kt += K[i][3 * v + c];
+            assert_close(Kt, 0.0, 1e-12 * scale);
+        }
+    }
+    free(Ti); free(Tj); free(Tv);
+    free(a);
+}
+
+static void test_search_bad_input(void **state)
+{
+    (void)state;
+    uint64_t s = 5;
+    mscene *a = malloc(sizeof *a);
+    mscene_make(a, &s);
+    ffc_tree *t;
+    assert_int_equal(ffc_tree_build(3, TNFM, a->Fm, TNV, a->X, &t), FFC_OK);
+    long need = -1;
+    assert_int_equal(ffc_mortar_search(t, TNFS, a->Fs, TNV, a->X, 2, NULL, 3, a->L, &need), FFC_ERR_CAPACITY);
+    assert_true(need > 3);
+    assert_int_equal(ffc_mortar_search(t, TNFS, a->Fs, TNV, a->X, 2, NULL, need, a->L, &need), need);
+    assert_int_equal(ffc_mortar_search(t, TNFS, a->Fs, TNV, a->X, 9, NULL, 4000, a->L, &need), FFC_ERR_QUAD);
+    assert_int_equal(ffc_mortar_search(NULL, TNFS, a->Fs, TNV, a->X, 2, NULL, 4000, a->L, &need), FFC_ERR_NULL);
+    long bad_f[TNFS * 3];
+    memcpy(bad_f, a->Fs, sizeof bad_f);
+    bad_f[4] = TNV;
+    assert_int_equal(ffc_mortar_search(t, TNFS, bad_f, TNV, a->X, 2, NULL, 4000, a->L, &need), FFC_ERR_INDEX);
+    /* segment links need the nodal law and the qdeg 0 convention */
+    ffc_effects fx = {0, 0, 0};
+    ffc_law pointwise = {60, 0, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL};
+    double R[TNV * 3] = {0};
+    long nt, bad;
+    const int nl = ffc_mortar_search(t, TNFS, a->Fs, TNV, a->X, 2, NULL, 4000, a->L, &need);
+    assert_int_equal(ffc_assemble(&fx, &a->P, 0, nl, a->L, a->lam, NULL, &pointwise, R, 0, NULL, NULL, NULL, &nt, NULL,
+                                  &bad), FFC_ERR_VALUE);
+    ffc_law law = {60, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL};
+    assert_int_equal(ffc_assemble(&fx, &a->P, 2, nl, a->L, a->lam, NULL, &law, R, 0, NULL, NULL, NULL, &nt, NULL, &bad),
+                     FFC_ERR_SIZE);
+    a->L[3].w = NAN;
+    assert_int_equal(ffc_assemble(&fx, &a->P, 0, nl, a->L, a->lam, NULL, &law, R, 0, NULL, NULL, NULL, &nt, NULL, &bad),
+                     FFC_ERR_NONFINITE);
+    assert_int_equal(bad, 3);
+    a->L[3].w = 0.1;
+    a->dual[20] = INFINITY;
+    law.dual = a->dual;
+    assert_int_equal(ffc_assemble(&fx, &a->P, 0, nl, a->L, a->lam, NULL, &law, R, 0, NULL, NULL, NULL, &nt, NULL, &bad),
+                     FFC_ERR_NONFINITE);
+    assert_int_equal(bad, 2);
+    ffc_tree_free(t);
+    free(a);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_clip_random),
+        cmocka_unit_test(test_clip_bad_input),
+        cmocka_unit_test(test_segment_coverage),
+        cmocka_unit_test(test_dual_basis),
+        cmocka_unit_test(test_uniform_pressure),
+        cmocka_unit_test(test_segment_tangent),
+        cmocka_unit_test(test_translation),
+        cmocka_unit_test(test_search_bad_input),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
