@@ -149,9 +149,17 @@ int ffc_mortar_segment(int qdeg, const double Xs[3][3], const double Xm[3][3], l
  * so that a multiplier field sum_a Phi_a lambda_a weighted by N_b gives
  * lambda_b D_bb: one node, one equation.  On a fully covered facet
  * A = [[3,-1,-1],[-1,3,-1],[-1,-1,3]] (Phi_a = 4 N_a - 1).  The area
- * element of a flat facet is constant and cancels in A.  A facet whose
- * coverage makes M nearly singular (det M below 1e-8 (tr M / 3)^3: a
- * sliver along an edge or a vertex) keeps the standard basis, A = I. */
+ * element of a flat facet is constant and cancels in A.
+ * Partly covered facets (over the rim of the master surface): the dual
+ * basis of the covered part grows large where that part is thin (its M
+ * nearly singular), and a switch to the standard basis at some coverage
+ * would make the weights jump as the surfaces slide (measured: the
+ * augmentations cycle).  So the basis is blended continuously,
+ *     A = s D M^-1 + (1 - s) I,   s = clamp((f - 0.5) / 0.4, 0, 1),
+ * f the covered fraction: dual from 90% coverage on, standard below 50%.
+ * Both parts give sum_q w_q Phi_a = D_aa, so the nodal weights stay
+ * positive.  A nearly singular M (det M below 1e-8 (tr M / 3)^3) keeps
+ * A = I. */
 int ffc_dual_basis(long n, const double xi[][2], const double w[], double A[3][3])
 {
     if (!A) return FFC_ERR_NULL;
@@ -160,8 +168,9 @@ int ffc_dual_basis(long n, const double xi[][2], const double w[], double A[3][3
     if (n < 0) return FFC_ERR_SIZE;
     if (n == 0) return FFC_OK;
     if (!xi || !w) return FFC_ERR_NULL;
-    double M[3][3] = {{0}}, D[3] = {0};
+    double M[3][3] = {{0}}, D[3] = {0}, cov = 0.0;
     for (long q = 0; q < n; q++) {
+        cov += w[q];
         if (!isfinite(xi[q][0]) || !isfinite(xi[q][1]) || !isfinite(w[q])) return FFC_ERR_NONFINITE;
         const double N[3] = {1.0 - xi[q][0] - xi[q][1], xi[q][0], xi[q][1]};
         for (int a = 0; a < 3; a++) {
@@ -177,8 +186,9 @@ int ffc_dual_basis(long n, const double xi[][2], const double w[], double A[3][3
         }
     const double det = M[0][0] * C[0][0] + M[0][1] * C[0][1] + M[0][2] * C[0][2];
     const double tr = (M[0][0] + M[1][1] + M[2][2]) / 3.0;
-    if (!(det > 1e-8 * tr * tr * tr)) return FFC_OK;
+    const double s = fmin(1.0, (2.0 * cov - 0.5) / (0.9 - 0.5)); /* covered fraction 2 cov: 0.5 -> 0, 0.9 -> 1 */
+    if (!(s > 0.0) || !(det > 1e-8 * tr * tr * tr)) return FFC_OK;
     for (int a = 0; a < 3; a++)
-        for (int b = 0; b < 3; b++) A[a][b] = D[a] * C[b][a] / det; /* M^-1 = C^T / det, symmetric */
+        for (int b = 0; b < 3; b++) A[a][b] = s * D[a] * C[b][a] / det + (1.0 - s) * (a == b); /* M^-1 = C^T / det */
     return FFC_OK;
 }

@@ -182,14 +182,18 @@ static void test_segment_coverage(void **state)
     }
 }
 
-/* the dual basis: 4 N_a - 1 on a full facet; biorthogonal on a partly
- * covered one; the standard basis for a sliver */
+/* the dual basis: 4 N_a - 1 on a full facet; biorthogonal on a facet
+ * covered to 99%; blended with the standard one at 68% (each node's
+ * weight sum_q w Phi_a still D_aa); standard below half and for a sliver */
 static void test_dual_basis(void **state)
 {
     (void)state;
     const double Xs[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     const double full[3][3] = {{-1, -1, 1}, {3, -1, 1}, {-1, 3, 1}};
-    const double part[3][3] = {{0.2, -0.5, 1}, {2, 0.1, 1}, {0.1, 0.4, 1}}; /* clockwise seen from +z: facing */
+    /* the line x + y / 2 = 0.93 cuts off the corner at (1, 0): 99% covered */
+    const double part[3][3] = {{2.43, -3, 1}, {-0.57, 3, 1}, {-5, -5, 1}};
+    /* x + y / 2 = 0.6: 68% covered; x + y / 2 = 0.4: 32% */
+    const double p70[3][3] = {{2.1, -3, 1}, {-0.9, 3, 1}, {-5, -5, 1}}, p35[3][3] = {{1.9, -3, 1}, {-1.1, 3, 1}, {-5, -5, 1}};
     double xi[96][2], w[96], cov, A[3][3];
     int n = ffc_mortar_segment(2, Xs, full, 96, xi, w, &cov);
     assert_true(n > 0);
@@ -197,7 +201,7 @@ static void test_dual_basis(void **state)
     for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++) assert_close(A[a][b], a == b ? 3.0 : -1.0, 1e-12);
     n = ffc_mortar_segment(2, Xs, part, 96, xi, w, &cov);
-    assert_true(n > 0 && cov < 0.45 && cov > 0.05);
+    assert_close(cov, 0.5 - 0.0049, 1e-12);
     assert_int_equal(ffc_dual_basis(n, (const double(*)[2])xi, w, A), FFC_OK);
     double D[3] = {0}, M[3][3] = {{0}};
     for (int q = 0; q < n; q++) {
@@ -210,6 +214,25 @@ static void test_dual_basis(void **state)
     }
     for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++) assert_close(M[a][b], a == b ? D[a] : 0.0, 1e-14);
+    for (int k = 0; k < 2; k++) {
+        n = ffc_mortar_segment(2, Xs, k ? p35 : p70, 96, xi, w, &cov);
+        assert_close(2 * cov, k ? 0.32 : 0.68, 1e-12);
+        assert_int_equal(ffc_dual_basis(n, (const double(*)[2])xi, w, A), FFC_OK);
+        double Wd[3] = {0}, Dd[3] = {0}, off = 0;
+        for (int q = 0; q < n; q++) {
+            const double N[3] = {1 - xi[q][0] - xi[q][1], xi[q][0], xi[q][1]};
+            for (int a = 0; a < 3; a++) {
+                Dd[a] += w[q] * N[a];
+                Wd[a] += w[q] * (A[a][0] * N[0] + A[a][1] * N[1] + A[a][2] * N[2]);
+            }
+        }
+        for (int a = 0; a < 3; a++) {
+            assert_close(Wd[a], Dd[a], 1e-14);
+            for (int b = 0; b < 3; b++) off = fmax(off, fabs(A[a][b] - (a == b)));
+        }
+        if (k) assert_true(off == 0.0); /* below half: standard */
+        else assert_true(off > 0.1);    /* blended */
+    }
     const double sliver[1][2] = {{0.5, 0.5}}, ws[1] = {0.1};
     assert_int_equal(ffc_dual_basis(1, sliver, ws, A), FFC_OK);
     for (int a = 0; a < 3; a++)
