@@ -871,6 +871,7 @@ typedef struct {
 typedef struct {
     int iters;         /* Newton iterations (condensed linear solves) */
     int evals;         /* contact evaluations */
+    double t_eval;     /* wall time of those evaluations (seconds) */
     int fallbacks;     /* directions taken from the material tangent */
     long m;            /* contact dofs of the condensed problem at the end (count) */
     long grown;        /* of them, those that joined during the call (count) */

@@ -1,9 +1,11 @@
 /* ffc_bulk.c: the bulk stiffness of a small-strain scene factorized once
  * (CHOLMOD) and the Newton systems (K + Kc) x = b solved on the contact
  * dofs (the compliance G grown by block back-solves, see ffc.h). */
+#define _POSIX_C_SOURCE 199309L /* clock_gettime */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <suitesparse/cholmod.h>
 
@@ -44,6 +46,7 @@ struct ffc__bulk {
     long *ti, *tj;             /* [tcap] contact tangent triplets */
     double *tv;                /* [tcap] */
     long tcap;
+    double *t_eval;            /* where contact_eval adds its wall time (seconds), or NULL */
     double *Mw, *Gw;           /* [wcap] the dense tangent and G on its support (a x a) */
     long wcap;
     /* the last dense LU of a condensed Newton direction, kept as the
@@ -654,7 +657,11 @@ static int contact_eval(ffc__bulk *b, ffc__contact_fn fn, void *ctx, const doubl
             b->tcap = need;
         }
         memset(b->r, 0, (size_t)b->n * sizeof(double));
+        struct timespec t0, t1;
+        clock_gettime(CLOCK_MONOTONIC, &t0);
         int st = fn(ctx, w, tangent, b->r, tangent ? b->tcap : 0, b->ti, b->tj, b->tv, nt, fmag, bad);
+        clock_gettime(CLOCK_MONOTONIC, &t1);
+        if (b->t_eval) *b->t_eval += (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
         if (st != FFC_ERR_CAPACITY || !tangent) return st;
         need = *nt + *nt / 2 + 64;
     }
@@ -909,6 +916,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
     *bad = -1;
     if (!b || !fn || !r || !u || !o || !info || (nc > 0 && !cand) || (nr > 0 && !rows)) return FFC_ERR_NULL;
     memset(info, 0, sizeof *info);
+    b->t_eval = &info->t_eval;
     if (nc < 0 || nr < 0) return FFC_ERR_SIZE;
     if (o->max_iter < 1 || o->max_ls < 0 || !(o->ls_tol > 0 && o->ls_tol < 1) || !(o->ftol > 0) ||
         !isfinite(o->ftol) || !(o->frel >= 0) || !isfinite(o->frel) || o->max_dofs < 0 || (o->tangent != FFC_TANGENT_CONSISTENT && o->tangent != FFC_TANGENT_MATERIAL))

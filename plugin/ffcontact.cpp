@@ -1489,10 +1489,11 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "residual") return in.residual;
     if (k == "newtonIterations") return d.newton.iters;
     if (k == "evaluations") return d.newton.evals;
+    if (k == "evalTime") return d.newton.t_eval;
     if (k == "fallbacks") return d.newton.fallbacks;
     if (k == "condensedDofs") return d.newton.m;
     if (k == "support") return d.newton.support;
-    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, fallbacks, condensedDofs, support");
+    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, evalTime, fallbacks, condensedDofs, support");
     return 0;
 }
 
