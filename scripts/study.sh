@@ -8,7 +8,8 @@
 #   results/study-eps.png          iterations against the penalty factor
 #   results/study-time.png         where the time goes at each mesh level
 # Runs longer than 30 s are timed once (column reps).  Knob "method": the
-# node-to-surface Lagrange-multiplier method (-method nts) at each mesh level.
+# node-to-surface Lagrange-multiplier method (-method nts) and the mortar
+# method (-method mortar) at each mesh level.
 # Knob "solver": UMFPACK on K + Kc at every Newton iteration instead of the
 # default factored path (the stiffness factorized once, each Newton system
 # solved on the contact dofs), at h_c = 0.025, 0.0125 and P2 h_c = 0.05.
@@ -61,7 +62,7 @@ run() {   # run <knob> <label> <args...>
     pt=$(echo "$@" | sed -n 's/.*-pentol \([^ ]*\).*/\1/p'); pt=${pt:-1e-4}
     q=$(echo "$@" | sed -n 's/.*-q \([^ ]*\).*/\1/p'); q=${q:-4}
     mem=$(tail -1 "$out.mem" 2>/dev/null | awk '{printf "%.1f", $1 / 1024}')
-    method=al; case "$*" in *"-method nts"*) method=nts ;; esac
+    method=al; case "$*" in *"-method nts"*) method=nts ;; *"-method mortar"*) method=mortar ;; esac
     solver=$(val "$j" linear_solver | tr -d '"'); solver=${solver:-?}
     if [ "$conv" = 1 ]; then
         F=$(val $j F); p0f=$(val $j p0_fit); af=$(val $j a_fit)
@@ -83,6 +84,7 @@ if [ "$mode" = quick ]; then
     for t in 1e-2 1e-6; do run uzawa "pentol$t" -hc 0.05 -pentol $t -ltol $t; done
     for q in 1 6; do run quad "q$q" -hc 0.05 -q $q; done
     for h in 0.1 0.05; do run method "nts-hc$h" -hc $h -method nts; done
+    for h in 0.1 0.05; do run method "mortar-hc$h" -hc $h -method mortar; done
 else
     for h in 0.1 0.05 0.025 0.0125; do run mesh "p1-hc$h" -hc $h; done
     for h in 0.1 0.05; do run mesh "p2-hc$h" -hc $h -DQUADRATIC=1; done
@@ -93,6 +95,7 @@ else
     run combined p1-hc0.025-q2 -hc 0.025 -q 2
     run combined p2-hc0.05-q2 -hc 0.05 -q 2 -DQUADRATIC=1
     for h in 0.1 0.05 0.025 0.0125; do run method "nts-hc$h" -hc $h -method nts; done
+    for h in 0.1 0.05 0.025 0.0125; do run method "mortar-hc$h" -hc $h -method mortar; done
     run solver solver-UMFPACK -hc 0.025 -solver UMFPACK
     run solver solver-UMFPACK-hc0.0125 -hc 0.0125 -solver UMFPACK
     run solver solver-UMFPACK-p2 -hc 0.05 -DQUADRATIC=1 -solver UMFPACK
@@ -127,6 +130,10 @@ frun() {   # frun <case> <label> <h> <error field (max over the file)> <args...>
 frun sliding-block "sb-nts" 0.15 err_plateau -method nts
 frun cattaneo-mindlin "cm-hc0.1-nts" 0.1 "level[0-9]_err_c_over_h" -hc 0.1 -method nts
 [ "$mode" = quick ] || frun cattaneo-mindlin "cm-hc0.05-nts" 0.05 "level[0-9]_err_c_over_h" -hc 0.05 -method nts
+# mortar (segment-to-segment, dual multipliers)
+frun sliding-block "sb-mortar" 0.15 err_plateau -method mortar
+frun cattaneo-mindlin "cm-hc0.1-mortar" 0.1 "level[0-9]_err_c_over_h" -hc 0.1 -method mortar
+[ "$mode" = quick ] || frun cattaneo-mindlin "cm-hc0.05-mortar" 0.05 "level[0-9]_err_c_over_h" -hc 0.05 -method mortar
 for sv in auto UMFPACK; do
     frun sliding-block "sb-$sv" 0.15 err_plateau -solver $sv
     frun cattaneo-mindlin "cm-hc0.1-$sv" 0.1 "level[0-9]_err_c_over_h" -hc 0.1 -solver $sv
