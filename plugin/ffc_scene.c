@@ -216,9 +216,15 @@ static int pair_alloc_lambda(scene_pair *p, long nv)
  * the pair keeps the links it had. */
 static int pair_alloc_links(scene_pair *p)
 {
-    if (p->o.method == FFC_METHOD_MORTAR) { /* links come from each search; the dual basis starts standard */
+    if (p->o.method == FFC_METHOD_MORTAR) { /* links come from each search (none before the first: an
+                                                 assembly then adds nothing); the dual basis starts standard */
         double *d = p->dual ? p->dual : malloc(9 * p->nfs * sizeof *d);
         if (!d) return FFC_ERR_MEMORY;
+        if (!p->links) {
+            p->links = malloc(16 * sizeof *p->links);
+            if (!p->links) { if (d != p->dual) free(d); return FFC_ERR_MEMORY; }
+            p->lcap = 16;
+        }
         for (long f = 0; f < p->nfs; f++)
             for (int i = 0; i < 9; i++) d[9 * f + i] = i % 4 == 0;
         p->dual = d;

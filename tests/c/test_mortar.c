@@ -608,6 +608,67 @@ static void test_search_bad_input(void **state)
     free(a);
 }
 
+/* A mortar pair in a scene: nothing to add before its first search (a
+ * dynamic scene evaluates its residual before searching), its links and
+ * dual basis from each search, one output row per slave node with the
+ * nodal pressure, and the scene's refusals (pointwise multipliers,
+ * quadratic facets). */
+static void test_scene_pair(void **state)
+{
+    (void)state;
+    enum { NM = 3, NS = 4, NVM = (NM + 1) * (NM + 1), NV = NVM + (NS + 1) * (NS + 1) };
+    static double X[3 * NV], u[3 * NV], R[3 * NV];
+    static long Fm[6 * NM * NM], Fs[6 * NS * NS];
+    grid(NM, 0.0, 0.0, 1.0, 1, 0, 0, X, Fm);
+    grid(NS, 0.0, 0.35, 0.7, 0, 1, NVM, X, Fs);
+    ffc_effects fx = {0, 0, 0};
+    ffc_scene *s;
+    assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_OK);
+    ffc_pair_opts o = ffc_pair_defaults();
+    o.method = FFC_METHOD_MORTAR;
+    o.qdeg = 2;
+    o.eps_n = 1e3;
+    long bad;
+    assert_int_equal(ffc_scene_add_pair(s, 2 * NS * NS, Fs, 2 * NM * NM, Fm, &o, &bad), 0);
+    memset(u, 0, sizeof u);
+    for (long v = NVM; v < NV; v++) u[3 * v + 2] = -0.001; /* the slave pressed in by 0.001 */
+    long nt;
+    memset(R, 0, sizeof R);
+    assert_int_equal(ffc_scene_assemble(s, u, FFC_TANGENT_NONE, R, 0, NULL, NULL, NULL, &nt, &bad), FFC_OK);
+    for (long k = 0; k < 3 * NV; k++) assert_true(R[k] == 0.0); /* no links yet */
+    long linked;
+    assert_int_equal(ffc_scene_search(s, u, &linked, &bad), FFC_OK);
+    assert_true(linked > 2 * NS * NS * 3);
+    assert_int_equal(ffc_scene_nlinks(s, 0), linked);
+    assert_int_equal(ffc_scene_assemble(s, u, FFC_TANGENT_NONE, R, 0, NULL, NULL, NULL, &nt, &bad), FFC_OK);
+    double fz = 0;
+    for (long v = NVM; v < NV; v++) fz += R[3 * v + 2];
+    /* the penalty pressure eps g = 1 over the slave's area 0.49 pushes it up: -R */
+    assert_close(fz, -1e3 * 0.001 * 0.49, 1e-12);
+    const long np = ffc_scene_npoints(s, 0);
+    assert_int_equal(np, (NS + 1) * (NS + 1));
+    double *P = malloc(np * FFC_POINT_COLS * sizeof *P);
+    long n;
+    assert_int_equal(ffc_scene_points(s, u, 0, np, P, &n, &bad), FFC_OK);
+    double area = 0;
+    for (long r = 0; r < n; r++) {
+        assert_close(P[r * FFC_POINT_COLS + 3], -0.001, 1e-15); /* weighted gap = nodal gap */
+        assert_close(P[r * FFC_POINT_COLS + 4], 1.0, 1e-12);    /* nodal pressure eps g */
+        area += P[r * FFC_POINT_COLS + 6];
+    }
+    assert_close(area, 0.49, 1e-14);
+    free(P);
+    o.nodal = 0;
+    assert_int_equal(ffc_scene_add_pair(s, 2 * NS * NS, Fs, 2 * NM * NM, Fm, &o, &bad), FFC_ERR_VALUE);
+    ffc_scene_free(s);
+    ffc_scene *q;
+    assert_int_equal(ffc_scene_create(6, NV, X, 0, NULL, &fx, &q), FFC_OK);
+    o.nodal = 1;
+    long F6[6] = {0, 1, 2, 3, 4, 5}, G6[6] = {6, 7, 8, 9, 10, 11};
+    assert_int_equal(ffc_scene_add_pair(q, 1, F6, 1, G6, &o, &bad), FFC_ERR_NODES);
+    ffc_scene_free(q);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -620,6 +681,7 @@ int main(void)
         cmocka_unit_test(test_resegmented_tangent),
         cmocka_unit_test(test_translation),
         cmocka_unit_test(test_search_bad_input),
+        cmocka_unit_test(test_scene_pair),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
