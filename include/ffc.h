@@ -287,10 +287,25 @@ int ffc_clip_polygon(int na, const double a[][2], int nb, const double b[][2], i
  * slave normal: xi[cap][2] local coordinates on the slave facet, w[cap]
  * weights on its reference triangle (area 1/2), the Gauss rule of degree
  * qdeg on each triangle of the clipped polygon; *covered = the covered
- * area in local coordinates (1/2: all).  Returns the number of points (0:
- * no overlap), FFC_ERR_CAPACITY when cap is too small, or an error. */
+ * area in local coordinates (1/2: all).  With exi != NULL also the points
+ * of the segment's moving edges (those on a projected master edge):
+ * exi[ecap][2], and edv[ecap][18] their weight times the outward normal
+ * velocity of the edge per unit change of each dof (slave facet nodes,
+ * then master facet nodes; x, y, z each), *ne their count: the boundary
+ * term of the segment's motion (see ffc_mortar.c).  Returns the number of
+ * points (0: no overlap), FFC_ERR_CAPACITY when cap or ecap is too small,
+ * or an error. */
 int ffc_mortar_segment(int qdeg, const double Xs[3][3], const double Xm[3][3], long cap, double xi[][2],
-                       double w[], double *covered);
+                       double w[], long ecap, double exi[][2], double edv[][18], long *ne, double *covered);
+
+/* A moving-edge point of a segment: where the segment's boundary follows
+ * a master edge, the boundary term of its motion in the tangent. */
+typedef struct {
+    long sf, mf;       /* slave facet, master facet */
+    double xs[2];      /* slave local coordinates of the point (1) */
+    double dv[18];     /* line weight x outward normal velocity per unit change of each dof of the
+                          slave facet's then the master facet's nodes, x, y, z each (1/length) */
+} ffc_mortar_edge;
 
 /* Dual (biorthogonal) multiplier basis of a linear slave facet from the
  * points xi[n], w[n] of its covered part: Phi_a = sum_b A[a][b] N_b with
@@ -300,15 +315,33 @@ int ffc_dual_basis(long n, const double xi[][2], const double w[], double A[3][3
 
 /* Segment links of the slave surface Fs[nfs*3] (positions x[nvs*3])
  * against the tree's master surface (3-node facets): for every slave
- * facet, every master facet that faces it (normals opposed), whose box
+ * facet, every master facet that faces it (normals opposed) and whose box
  * overlaps the slave facet's box grown by the capture distance of
- * ffc_search, and that lies within it at the segment's centre, gives the
- * points of ffc_mortar_segment; each link has q = -1, its weight w, the
+ * ffc_search gives the points of ffc_mortar_segment, provided one of them
+ * lies within that distance at its segment's centre (a facet is in the
+ * band or not, never cut by its edge); each link has q = -1, its weight w, the
  * master facet and the foot of the point on the facet's plane.  Links of
  * a facet are consecutive, facets in order.  Returns the number of links
  * written; FFC_ERR_CAPACITY with *need the count when cap is too small. */
 int ffc_mortar_search(const ffc_tree *t, long nfs, const long Fs[], long nvs, const double x[], int qdeg,
                       const ffc_search_opts *o, long cap, ffc_link links[], long *need);
+
+/* The facet pairs of ffc_mortar_search: pairs[2 k] the slave facet,
+ * pairs[2 k + 1] the master facet of pair k (cap pairs at most; *need the
+ * count).  Returns the count or an error (FFC_ERR_CAPACITY). */
+int ffc_mortar_pairs(const ffc_tree *t, long nfs, const long Fs[], long nvs, const double x[],
+                     const ffc_search_opts *o, long cap, long pairs[], long *need);
+
+/* The segments of given facet pairs at positions x[nvs*3] (slave facets
+ * Fs, master facets Fm, 3 nodes each): their links (as ffc_mortar_search,
+ * whatever the capture distance: the pairs were chosen by it) into
+ * links[lcap] (*lneed their count) and, with edges != NULL, their
+ * moving-edge points into edges[ecap] (*eneed).  Returns the link count,
+ * FFC_ERR_CAPACITY (the needs set) or an error (*lneed = the pair at
+ * fault for FFC_ERR_INDEX). */
+int ffc_mortar_links(long nfs, const long Fs[], long nfm, const long Fm[], long nvs, const double x[], int qdeg,
+                     long npairs, const long pairs[], long lcap, ffc_link links[], long *lneed, long ecap,
+                     ffc_mortar_edge edges[], long *eneed);
 
 /* ------------------------------------------------ normal contact links */
 /* Augmented-Lagrangian normal contact (after Laursen; the seed's
@@ -409,6 +442,10 @@ typedef struct {
                           with A = dual + 9 f (row-major, ffc_dual_basis) in place
                           of N_a, in the weighted gap, the pressure and the
                           friction sums alike; NULL: standard N_a */
+    long nedge;        /* segment links (qdeg 0): the moving-edge points of their segments,
+                          edge[nedge] (ffc_mortar_links), whose motion enters the tangent;
+                          0: the tangent at fixed segments */
+    const ffc_mortar_edge *edge;
 } ffc_law;
 
 /* ------------------------------------------------------ Coulomb friction */

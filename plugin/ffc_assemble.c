@@ -141,6 +141,17 @@ int ffc__common_checks(const ffc_effects *fx, const ffc_pair *P, int qdeg, long 
         if (*nq < 0) return *nq;
         if (nl != P->nfs * *nq) return FFC_ERR_SIZE;
     }
+    if (law->nedge) {
+        if (qdeg != 0 || law->nedge < 0) return FFC_ERR_VALUE;
+        if (!law->edge) return FFC_ERR_NULL;
+        for (long b = 0; b < law->nedge; b++) {
+            const ffc_mortar_edge *e = &law->edge[b];
+            if (e->sf < 0 || e->sf >= P->nfs || e->mf < 0 || e->mf >= P->nfm) { *bad = b; return FFC_ERR_INDEX; }
+            for (int l = 0; l < 18; l++)
+                if (!isfinite(e->dv[l])) { *bad = b; return FFC_ERR_NONFINITE; }
+            if (!isfinite(e->xs[0]) || !isfinite(e->xs[1])) { *bad = b; return FFC_ERR_NONFINITE; }
+        }
+    }
     if (law->dual) {
         if (!law->nodal || P->ns != 3) return FFC_ERR_VALUE;
         for (long k = 0; k < 9 * P->nfs; k++)

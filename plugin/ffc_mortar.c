@@ -84,11 +84,55 @@ int ffc_clip_polygon(int na, const double a[][2], int nb, const double b[][2], i
  * fan of triangles from its first vertex, and each gets the Gauss rule of
  * degree qdeg: a point xi = v_0 + r_1 (v_i - v_0) + r_2 (v_i+1 - v_0)
  * with weight w_g 2 A_i (A_i its area in xi), so that the weights of a
- * fully covered facet sum to 1/2, as the facet's own rule does. */
-int ffc_mortar_segment(int qdeg, const double Xs[3][3], const double Xm[3][3], long cap, double xi[][2],
-                       double w[], double *covered)
+ * fully covered facet sum to 1/2, as the facet's own rule does.
+ *
+ * Formulation (the segment's motion).  An integral over the segment,
+ * I = int_S F dxi, changes with the nodal positions u through F and
+ * through S (Reynolds):  dI = int_S dF dxi + oint F (v . nu) ds, with nu
+ * the outward normal of S and v the velocity of its boundary.  Edges on
+ * the slave triangle's sides do not move (v . nu = 0); an edge on the
+ * projected master edge A_j A_k moves with it: at the point A_j +
+ * s (A_k - A_j) of that line, v = (1 - s) dA_j + s dA_k, and each
+ * projected vertex moves as
+ *     dxi = m^-1 (dr - dm xi),  r_a = t_a . (y - s_0),  m_ab = t_a . t_b,
+ * with dt_1 = ds_1 - ds_0, dt_2 = ds_2 - ds_0, d(y - s_0) = dy - ds_0.  Each
+ * moving edge gets the 2-point Gauss rule; at its point b, edv[b][l] is
+ * omega_b L (nu . v) per unit change of dof l (dofs: the slave facet's
+ * three nodes, then the master facet's, x, y, z each), so that
+ * oint F (v . nu) ds = sum_b F(exi_b) edv[b][.]. */
+static void vertex_motion(const double t[2][3], const double mt[2][2], double det, const double d[3],
+                          const double xi[2], int b, double dA[2][18])
 {
-    if (!Xs || !Xm || !xi || !w || !covered) return FFC_ERR_NULL;
+    for (int l = 0; l < 18; l++) {
+        const int node = l / 3, c = l % 3;
+        double dt[2][3] = {{0, 0, 0}, {0, 0, 0}}, dd[3] = {0, 0, 0};
+        if (node == 0) { dt[0][c] = dt[1][c] = -1.0; dd[c] = -1.0; }
+        else if (node == 1) dt[0][c] = 1.0;
+        else if (node == 2) dt[1][c] = 1.0;
+        else if (node - 3 == b) dd[c] = 1.0;
+        else { dA[0][l] = dA[1][l] = 0.0; continue; }
+        double rhs[2];
+        for (int a = 0; a < 2; a++) {
+            rhs[a] = ffc__dot(dt[a], d) + ffc__dot(t[a], dd);
+            for (int e = 0; e < 2; e++) rhs[a] -= (ffc__dot(dt[a], t[e]) + ffc__dot(t[a], dt[e])) * xi[e];
+        }
+        dA[0][l] = (mt[1][1] * rhs[0] - mt[0][1] * rhs[1]) / det;
+        dA[1][l] = (mt[0][0] * rhs[1] - mt[1][0] * rhs[0]) / det;
+    }
+}
+
+/* |line (a, b) at p| / |b - a|: the distance of p from the line through a, b */
+static double line_dist(const double a[2], const double b[2], const double p[2])
+{
+    const double ex = b[0] - a[0], ey = b[1] - a[1];
+    return fabs(ex * (p[1] - a[1]) - ey * (p[0] - a[0])) / sqrt(ex * ex + ey * ey);
+}
+
+int ffc_mortar_segment(int qdeg, const double Xs[3][3], const double Xm[3][3], long cap, double xi[][2],
+                       double w[], long ecap, double exi[][2], double edv[][18], long *ne, double *covered)
+{
+    if (ne) *ne = 0;
+    if (!Xs || !Xm || !xi || !w || !covered || (exi && (!edv || !ne))) return FFC_ERR_NULL;
     double rq[16][2], wq[16];
     const int nq = ffc_quad(qdeg, 16, rq, wq);
     if (nq < 0) return nq;
@@ -104,10 +148,11 @@ int ffc_mortar_segment(int qdeg, const double Xs[3][3], const double Xm[3][3], l
     const double det = mt[0][0] * mt[1][1] - mt[0][1] * mt[1][0];
     if (!(det > FFC__DEGEN_REL * FFC__DEGEN_REL * (mt[0][0] + mt[1][1]) * (mt[0][0] + mt[1][1])))
         return FFC_ERR_DEGENERATE;
-    double pm[3][2];
+    double pm[3][2], dm[3][3];
+    int ord[3] = {0, 1, 2}; /* master vertex of each corner of pm */
     for (int b = 0; b < 3; b++) {
-        double d[3] = {Xm[b][0] - Xs[0][0], Xm[b][1] - Xs[0][1], Xm[b][2] - Xs[0][2]};
-        const double r0 = ffc__dot(t[0], d), r1 = ffc__dot(t[1], d);
+        for (int i = 0; i < 3; i++) dm[b][i] = Xm[b][i] - Xs[0][i];
+        const double r0 = ffc__dot(t[0], dm[b]), r1 = ffc__dot(t[1], dm[b]);
         pm[b][0] = (mt[1][1] * r0 - mt[0][1] * r1) / det;
         pm[b][1] = (mt[0][0] * r1 - mt[1][0] * r0) / det;
     }
@@ -118,6 +163,8 @@ int ffc_mortar_segment(int qdeg, const double Xs[3][3], const double Xm[3][3], l
         double tmp[2] = {pm[1][0], pm[1][1]};
         pm[1][0] = pm[2][0]; pm[1][1] = pm[2][1];
         pm[2][0] = tmp[0]; pm[2][1] = tmp[1];
+        ord[1] = 2;
+        ord[2] = 1;
     }
     static const double ref[3][2] = {{0, 0}, {1, 0}, {0, 1}};
     double poly[2 * FFC_CLIPMAX][2];
@@ -138,6 +185,40 @@ int ffc_mortar_segment(int qdeg, const double Xs[3][3], const double Xm[3][3], l
         }
     }
     if (n > cap) return FFC_ERR_CAPACITY;
+    if (!exi) return (int)n;
+    /* the moving edges: on a master edge line, not on a side of the slave triangle */
+    double dA[3][2][18];
+    for (int c = 0; c < 3; c++) vertex_motion((const double(*)[3])t, (const double(*)[2])mt, det, dm[ord[c]], pm[c],
+                                              ord[c], dA[c]);
+    static const double gs[2] = {0.21132486540518713, 0.78867513459481287}; /* (1 -+ 1/sqrt 3) / 2 */
+    const double tol = 1e-10;
+    long m = 0;
+    for (int i = 0; i < np; i++) {
+        const double *P = poly[i], *Q = poly[(i + 1) % np];
+        if ((fabs(P[1]) <= tol && fabs(Q[1]) <= tol) || (fabs(P[0]) <= tol && fabs(Q[0]) <= tol) ||
+            (fabs(P[0] + P[1] - 1.0) <= tol && fabs(Q[0] + Q[1] - 1.0) <= tol))
+            continue;
+        int j = -1;
+        for (int c = 0; c < 3 && j < 0; c++)
+            if (line_dist(pm[c], pm[(c + 1) % 3], P) <= tol && line_dist(pm[c], pm[(c + 1) % 3], Q) <= tol) j = c;
+        if (j < 0) continue; /* (round-off: an edge of neither) */
+        const int k = (j + 1) % 3;
+        const double ex = Q[0] - P[0], ey = Q[1] - P[1], L = sqrt(ex * ex + ey * ey);
+        if (!(L > 1e-14)) continue;
+        const double nu[2] = {ey / L, -ex / L}; /* outward: the polygon is counter-clockwise */
+        const double ax = pm[k][0] - pm[j][0], ay = pm[k][1] - pm[j][1], al2 = ax * ax + ay * ay;
+        for (int g = 0; g < 2; g++, m++) {
+            if (m >= ecap) continue;
+            exi[m][0] = P[0] + gs[g] * ex;
+            exi[m][1] = P[1] + gs[g] * ey;
+            const double s = ((exi[m][0] - pm[j][0]) * ax + (exi[m][1] - pm[j][1]) * ay) / al2;
+            for (int l = 0; l < 18; l++)
+                edv[m][l] = 0.5 * L * (nu[0] * ((1 - s) * dA[j][0][l] + s * dA[k][0][l]) +
+                                       nu[1] * ((1 - s) * dA[j][1][l] + s * dA[k][1][l]));
+        }
+    }
+    *ne = m;
+    if (m > ecap) return FFC_ERR_CAPACITY;
     return (int)n;
 }
 
@@ -191,4 +272,70 @@ int ffc_dual_basis(long n, const double xi[][2], const double w[], double A[3][3
     for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++) A[a][b] = s * D[a] * C[b][a] / det + (1.0 - s) * (a == b); /* M^-1 = C^T / det */
     return FFC_OK;
+}
+
+int ffc_mortar_links(long nfs, const long Fs[], long nfm, const long Fm[], long nvs, const double x[], int qdeg,
+                     long npairs, const long pairs[], long lcap, ffc_link links[], long *lneed, long ecap,
+                     ffc_mortar_edge edges[], long *eneed)
+{
+    long d1, d2;
+    if (!lneed) lneed = &d1;
+    if (!eneed) eneed = &d2;
+    *lneed = *eneed = 0;
+    if (!Fs || !Fm || !x || (npairs > 0 && !pairs) || (lcap > 0 && !links) || (ecap > 0 && !edges)) return FFC_ERR_NULL;
+    if (nfs <= 0 || nfm <= 0 || npairs < 0 || lcap < 0 || ecap < 0) return FFC_ERR_SIZE;
+    if (ffc_quad_size(qdeg) < 0) return FFC_ERR_QUAD;
+    long n = 0, m = 0;
+    double xi[96][2], w[96], exi[8][2], edv[8][18];
+    for (long k = 0; k < npairs; k++) {
+        const long f = pairs[2 * k], g = pairs[2 * k + 1];
+        if (f < 0 || f >= nfs || g < 0 || g >= nfm) { *lneed = k; return FFC_ERR_INDEX; }
+        double Xs[3][3], Xm[3][3];
+        for (int a = 0; a < 3; a++) {
+            const long vs = Fs[3 * f + a], vm = Fm[3 * g + a];
+            if (vs < 0 || vs >= nvs || vm < 0 || vm >= nvs) { *lneed = k; return FFC_ERR_INDEX; }
+            for (int i = 0; i < 3; i++) {
+                Xs[a][i] = x[3 * vs + i];
+                Xm[a][i] = x[3 * vm + i];
+            }
+        }
+        double cov;
+        long ne = 0;
+        const int np = ffc_mortar_segment(qdeg, (const double(*)[3])Xs, (const double(*)[3])Xm, 96, xi, w, 8,
+                                          edges ? exi : NULL, edv, &ne, &cov);
+        if (np < 0) return np;
+        for (int q = 0; q < np; q++, n++) {
+            if (n >= lcap) continue;
+            double p[3];
+            for (int i = 0; i < 3; i++)
+                p[i] = Xs[0][i] + xi[q][0] * (Xs[1][i] - Xs[0][i]) + xi[q][1] * (Xs[2][i] - Xs[0][i]);
+            ffc_proj pr;
+            int st = ffc__project_free(3, (const double(*)[3])Xm, p, &pr);
+            if (st < 0) return st;
+            ffc_link *lk = &links[n];
+            lk->sf = f;
+            lk->q = -1;
+            lk->xs[0] = xi[q][0];
+            lk->xs[1] = xi[q][1];
+            lk->w = w[q];
+            lk->mf = g;
+            lk->xm[0] = pr.xi[0];
+            lk->xm[1] = pr.xi[1];
+            lk->gap = pr.gap;
+            for (int i = 0; i < 3; i++) lk->n[i] = pr.n[i];
+            lk->where = FFC_FOOT_INSIDE;
+        }
+        for (long b = 0; edges && np > 0 && b < ne; b++, m++) {
+            if (m >= ecap) continue;
+            edges[m].sf = f;
+            edges[m].mf = g;
+            edges[m].xs[0] = exi[b][0];
+            edges[m].xs[1] = exi[b][1];
+            memcpy(edges[m].dv, edv[b], sizeof edv[b]);
+        }
+    }
+    *lneed = n;
+    *eneed = m;
+    if (n > lcap || m > ecap) return FFC_ERR_CAPACITY;
+    return n <= 2147483647L ? (int)n : FFC_ERR_SIZE;
 }

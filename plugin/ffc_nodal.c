@@ -294,6 +294,81 @@ static int nodework_alloc(const ffc_pair *P, const ffc_link links[], const nodal
     return FFC_OK;
 }
 
+/* A moving-edge point of a segment, evaluated (see segment_motion) */
+typedef struct {
+    double g, da, N[3], r[3], n[3]; /* gap, area element, multiplier shape values, slip, normal */
+    long dof[FFC_MAXDOF];
+    int nd;
+} nedge_t;
+
+/* Formulation (segments that follow the surfaces).  Every integral of the
+ * law over the slave surface is a sum over segments S(u), and moving a
+ * segment's edge adds oint F (v . nu) ds (ffc_mortar_segment): law->edge
+ * holds the points b of the moving edges with dv_b = omega L d(v . nu)/du.
+ * So the tangent gains, with F evaluated at b (weight 1):
+ *   the residual's own integral:  K += F_R(b) dv_b^T,
+ *       F_R = -t_b da G (+ da S^T T_b with friction);
+ *   the nodal sums, through the nodal pressure and traction:
+ *       C_a += Phi_a(b) da (g_b - g~_a) dv_b            (dG_a - g~_a dW_a),
+ *       dr~_a += Phi_a(b) da (r_b - r~_a) dv_b / W_a,   dm_a += Phi_a(b) da n_b dv_b.
+ * The dual basis of a partly covered facet also moves with its segments;
+ * that term is not included (full coverage: A is fixed).  Geometric terms:
+ * none with law->material_only.  Each point is evaluated into E[b];
+ * returns the status. */
+static int segment_motion(const ffc_effects *fx, const ffc_pair *P, const ffc_law *law, const nodal_t *w, int fric,
+                          nedge_t E[], long cap, long Ti[], long Tj[], double Tv[], long *nt, int *ok, long *bad)
+{
+    for (long b = 0; b < law->nedge; b++) {
+        const ffc_mortar_edge *ed = &law->edge[b];
+        ffc_link tmp;
+        memset(&tmp, 0, sizeof tmp);
+        tmp.sf = ed->sf;
+        tmp.mf = ed->mf;
+        tmp.q = -1;
+        tmp.w = 1.0;
+        tmp.xs[0] = ed->xs[0];
+        tmp.xs[1] = ed->xs[1];
+        lnodes_t ln;
+        int s = ffc__gather_link(fx, P, 0, &tmp, &ln);
+        ffc_link_state st;
+        lgeo_t g;
+        if (!s) s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), tmp.xs, 1.0, P->nm, CP3(ln.Xm), &st, &g, NULL);
+        if (s) { *bad = b; return s; }
+        nedge_t *e = &E[b];
+        e->g = st.gap;
+        e->da = st.da;
+        e->nd = ln.nd;
+        memcpy(e->dof, ln.dof, sizeof ln.dof);
+        for (int i = 0; i < 3; i++) e->n[i] = st.n[i];
+        nlink_t nl;
+        memset(&nl, 0, sizeof nl);
+        ffc_shape(3, tmp.xs, nl.N, NULL);
+        if (law->dual) {
+            const double *A = law->dual + 9 * tmp.sf, L[3] = {nl.N[0], nl.N[1], nl.N[2]};
+            for (int a = 0; a < 3; a++) nl.N[a] = A[3 * a] * L[0] + A[3 * a + 1] * L[1] + A[3 * a + 2] * L[2];
+        }
+        for (int a = 0; a < 3; a++) e->N[a] = nl.N[a];
+        const double t = ffc__nodal_point_pressure(P, &tmp, &nl, w->tn);
+        double F[FFC_MAXDOF], Tq[3] = {0, 0, 0};
+        for (int k = 0; k < ln.nd; k++) F[k] = -t * st.da * g.G[k];
+        e->r[0] = e->r[1] = e->r[2] = 0.0;
+        if (fric) {
+            int fs;
+            double sw[FFC_MAXDOF], Q[3][FFC_MAXDOF];
+            ffc__link_slip(&g, CP3(ln.Ds), CP3(ln.Dm), e->r);
+            ffc__link_slip_deriv(&g, CP3(ln.Dm), ffc__motion_coef(fx, law), law->material_only, sw, Q);
+            ffc__nodal_point_traction(P, &tmp, &nl, w->T, Tq, &fs);
+            for (int k = 0; k < ln.nd; k++) F[k] += st.da * sw[k] * Tq[k % 3];
+        }
+        for (int k = 0; k < ln.nd; k++) {
+            if (F[k] == 0.0) continue;
+            for (int l = 0; l < ln.nd; l++)
+                if (ed->dv[l] != 0.0) *ok &= emit(nt, cap, Ti, Tj, Tv, ln.dof[k], ln.dof[l], F[k] * ed->dv[l]);
+        }
+    }
+    return FFC_OK;
+}
+
 int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double qw[], int nq, long nl,
                         const ffc_link links[], const double lambda[], const double lam_t[],
                         const ffc_law *law, double R[], long cap, long Ti[], long Tj[], double Tv[],
@@ -338,10 +413,34 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
             for (int b = 0; b < E->nd; b++)
                 if (D[a][b] != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, E->dof[a], E->dof[b], D[a][b]);
     }
+    /* the segments' motion (law->edge): its geometric part, and each point
+     * evaluated for the nodal part below; per slave node, its points */
+    const long ne = want_k && !material_only ? law->nedge : 0;
+    nedge_t *EB = NULL;
+    long *es = NULL, *el = NULL;
+    if (ne > 0) {
+        EB = malloc((size_t)ne * sizeof *EB);
+        es = calloc((size_t)P->nv + 1, sizeof *es);
+        el = malloc((size_t)(3 * ne) * sizeof *el);
+        if (!EB || !es || !el) { free(EB); free(es); free(el); ffc__nodal_free(&w); return FFC_ERR_MEMORY; }
+        s = segment_motion(fx, P, law, &w, fric, EB, cap, Ti, Tj, Tv, &nt, &ok, bad);
+        if (s) { free(EB); free(es); free(el); ffc__nodal_free(&w); return s; }
+        for (long b = 0; b < ne; b++)
+            for (int a = 0; a < 3; a++) es[P->Fs[law->edge[b].sf * P->ns + a] + 1]++;
+        for (long v = 0; v < P->nv; v++) es[v + 1] += es[v];
+        long *fill = calloc((size_t)P->nv, sizeof *fill);
+        if (!fill) { free(EB); free(es); free(el); ffc__nodal_free(&w); return FFC_ERR_MEMORY; }
+        for (long b = 0; b < ne; b++)
+            for (int a = 0; a < 3; a++) {
+                const long v = P->Fs[law->edge[b].sf * P->ns + a];
+                el[es[v] + fill[v]++] = b;
+            }
+        free(fill);
+    }
     if (want_k) {
         /* material stiffness, node by node: links of each slave node */
         nodework_t k;
-        if (nodework_alloc(P, links, &w, &k)) { ffc__nodal_free(&w); return FFC_ERR_MEMORY; }
+        if (nodework_alloc(P, links, &w, &k)) { free(EB); free(es); free(el); ffc__nodal_free(&w); return FFC_ERR_MEMORY; }
         for (long v = 0; v < P->nv; v++) {
             if (!w.on[v] || !(w.Wn[v] > 0.0)) continue;
             const double W = w.Wn[v], gt = w.Gn[v] / W, c = eps / W;
@@ -372,6 +471,24 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
                     for (int i = 0; i < 3; i++) {
                         k.Rt[3 * p + i] += Na * (E->da * fl->Q[i][a] + (fl->r[i] - Tn->r[i]) * E->dda[a]) / W;
                         if (!material_only) k.Nt[3 * p + i] += Na * (E->da * fl->dn[i][a] + E->n[i] * E->dda[a]);
+                    }
+                }
+            }
+            for (long m = ne > 0 ? es[v] : 0; ne > 0 && m < es[v + 1]; m++) { /* the segments' motion */
+                const long b = el[m];
+                const nedge_t *Eb = &EB[b];
+                double Na = 0.0;
+                for (int a = 0; a < 3; a++)
+                    if (P->Fs[law->edge[b].sf * P->ns + a] == v) Na += Eb->N[a];
+                for (int l = 0; l < Eb->nd; l++) {
+                    const double dv = law->edge[b].dv[l];
+                    const long p = k.pos[Eb->dof[l]];
+                    if (dv == 0.0 || p < 0) continue; /* (the segment's links put every dof there) */
+                    k.Cv[p] += Na * Eb->da * (Eb->g - gt) * dv;
+                    if (!ft) continue;
+                    for (int i = 0; i < 3; i++) {
+                        k.Rt[3 * p + i] += Na * Eb->da * (Eb->r[i] - Tn->r[i]) * dv / W;
+                        k.Nt[3 * p + i] += Na * Eb->da * Eb->n[i] * dv;
                     }
                 }
             }
@@ -408,6 +525,9 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
         }
         nodework_free(&k);
     }
+    free(EB);
+    free(es);
+    free(el);
     *ntrip = nt;
     ffc__nodal_free(&w);
     return ok ? FFC_OK : FFC_ERR_CAPACITY;

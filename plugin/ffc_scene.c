@@ -18,6 +18,9 @@ typedef struct {
     long nl;           /* links: nfs * nq (mortar: as the last search found) */
     long lcap;         /* capacity of links (mortar) */
     long nsn;          /* distinct slave nodes (mortar: its output rows) */
+    long *mp, nmp, mpcap; /* mortar: the facet pairs of the last search [2 mpcap], their count */
+    ffc_mortar_edge *edges; /* [ecap] mortar: the moving-edge points of the segments */
+    long ne, ecap;
     ffc_link *links;   /* [nl] */
     double *dual;      /* [9 nfs] mortar: the dual basis of each slave facet (ffc_dual_basis) */
     long nlam;         /* multipliers: nv (nodal) or nl (pointwise) */
@@ -99,6 +102,8 @@ static void pair_free(scene_pair *p)
     ffc_tree_free(p->tree);
     free(p->links);
     free(p->dual);
+    free(p->mp);
+    free(p->edges);
     free(p->lam);
     free(p->lam_t);
     free(p->lam0);
@@ -225,10 +230,15 @@ static int pair_alloc_links(scene_pair *p)
             if (!p->links) { if (d != p->dual) free(d); return FFC_ERR_MEMORY; }
             p->lcap = 16;
         }
+        if (!p->edges) { /* (non-NULL: ffc_mortar_links computes the edge points) */
+            p->edges = malloc(16 * sizeof *p->edges);
+            if (!p->edges) { if (d != p->dual) free(d); return FFC_ERR_MEMORY; }
+            p->ecap = 16;
+        }
         for (long f = 0; f < p->nfs; f++)
             for (int i = 0; i < 9; i++) d[9 * f + i] = i % 4 == 0;
         p->dual = d;
-        p->nl = 0;
+        p->nl = p->ne = 0;
         p->nq = 0;
         return FFC_OK;
     }
@@ -397,25 +407,29 @@ static int positions(ffc_scene *s, const double u[], long *bad)
     return FFC_OK;
 }
 
-/* The segment links of a mortar pair at s->x (grown as needed; on
- * failure the pair keeps its links) and the dual basis of each slave
- * facet from them; returns the link count or an error. */
-static int mortar_search(const ffc_scene *s, scene_pair *p)
+/* The segments of a mortar pair's facet pairs at s->x: its links and
+ * moving-edge points (grown as needed; on failure the pair keeps its
+ * arrays) and the dual basis of each slave facet from them; returns the
+ * link count or an error.  Called at every evaluation: the segments follow
+ * the surfaces, and the tangent has their motion (ffc_law.edge). */
+static int mortar_clip(const ffc_scene *s, scene_pair *p)
 {
-    long need = 0;
-    int st = ffc_mortar_search(p->tree, p->nfs, p->Fs, s->nv, s->x, p->o.qdeg, &p->o.search, p->lcap, p->links, &need);
+    long ln = 0, en = 0;
+    int st = ffc_mortar_links(p->nfs, p->Fs, p->nfm, p->Fm, s->nv, s->x, p->o.qdeg, p->nmp, p->mp, p->lcap, p->links,
+                              &ln, p->ecap, p->edges, &en);
     if (st == FFC_ERR_CAPACITY) {
-        const long cap = need + need / 4 + 16;
-        ffc_link *l = malloc(cap * sizeof *l);
-        if (!l) return FFC_ERR_MEMORY;
-        st = ffc_mortar_search(p->tree, p->nfs, p->Fs, s->nv, s->x, p->o.qdeg, &p->o.search, cap, l, &need);
-        if (st < 0) { free(l); return st; }
-        free(p->links);
-        p->links = l;
-        p->lcap = cap;
+        const long lc = ln > p->lcap ? ln + ln / 4 + 16 : p->lcap, ec = en > p->ecap ? en + en / 4 + 16 : p->ecap;
+        ffc_link *l = lc > p->lcap ? malloc(lc * sizeof *l) : NULL;
+        ffc_mortar_edge *e = ec > p->ecap ? malloc(ec * sizeof *e) : NULL;
+        if ((lc > p->lcap && !l) || (ec > p->ecap && !e)) { free(l); free(e); return FFC_ERR_MEMORY; }
+        if (l) { free(p->links); p->links = l; p->lcap = lc; }
+        if (e) { free(p->edges); p->edges = e; p->ecap = ec; }
+        st = ffc_mortar_links(p->nfs, p->Fs, p->nfm, p->Fm, s->nv, s->x, p->o.qdeg, p->nmp, p->mp, p->lcap, p->links,
+                              &ln, p->ecap, p->edges, &en);
     }
     if (st < 0) return st;
-    p->nl = st;
+    p->nl = ln;
+    p->ne = en;
     /* the dual basis of each facet from its consecutive links */
     double(*xi)[2] = malloc((p->nl + 1) * sizeof *xi), *w = malloc((p->nl + 1) * sizeof *w);
     if (!xi || !w) { free(xi); free(w); return FFC_ERR_MEMORY; }
@@ -438,6 +452,43 @@ static int mortar_search(const ffc_scene *s, scene_pair *p)
     free(xi);
     free(w);
     return st;
+}
+
+/* A mortar pair's search at s->x: the facet pairs (ffc_mortar_pairs),
+ * then their segments; returns the link count or an error. */
+static int mortar_search(const ffc_scene *s, scene_pair *p)
+{
+    long need = 0;
+    int st = ffc_mortar_pairs(p->tree, p->nfs, p->Fs, s->nv, s->x, &p->o.search, p->mpcap, p->mp, &need);
+    if (st == FFC_ERR_CAPACITY) {
+        const long cap = need + need / 4 + 16;
+        long *m = malloc(2 * cap * sizeof *m);
+        if (!m) return FFC_ERR_MEMORY;
+        st = ffc_mortar_pairs(p->tree, p->nfs, p->Fs, s->nv, s->x, &p->o.search, cap, m, &need);
+        if (st < 0) { free(m); return st; }
+        free(p->mp);
+        p->mp = m;
+        p->mpcap = cap;
+    }
+    if (st < 0) return st;
+    p->nmp = st;
+    return mortar_clip(s, p);
+}
+
+/* Every mortar pair's segments at u (positions into s->x) */
+static int mortar_follow(ffc_scene *s, const double u[], long *bad)
+{
+    int any = 0;
+    for (int k = 0; k < s->np; k++) any |= s->p[k].o.method == FFC_METHOD_MORTAR;
+    if (!any) return FFC_OK;
+    int st = positions(s, u, bad);
+    if (st) return st;
+    for (int k = 0; k < s->np; k++) {
+        if (s->p[k].o.method != FFC_METHOD_MORTAR) continue;
+        st = mortar_clip(s, &s->p[k]);
+        if (st < 0) { *bad = k; return st; }
+    }
+    return FFC_OK;
 }
 
 int ffc_scene_search(ffc_scene *s, const double u[], long *linked, long *bad)
@@ -505,6 +556,8 @@ static pair_call pair_view(const ffc_scene *s, const scene_pair *p, const double
     law->dvdu = s->dvdu;
     law->fixed = s->fixed;
     law->dual = p->o.method == FFC_METHOD_MORTAR && p->o.dual ? p->dual : NULL;
+    law->nedge = p->o.method == FFC_METHOD_MORTAR ? p->ne : 0;
+    law->edge = p->edges;
     *fx = s->fx;
     fx->friction = p->o.mu > 0; /* a frictionless pair computes no friction term */
     return c;
@@ -539,6 +592,8 @@ int ffc_scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], 
     if (tangent != FFC_TANGENT_NONE && (!Ti || !Tj || !Tv)) return FFC_ERR_NULL;
     if (cap < 0) return FFC_ERR_SIZE;
     if (!penalties_set(s, bad)) return FFC_ERR_VALUE;
+    int fs = mortar_follow(s, u, bad); /* the mortar segments at u */
+    if (fs) return fs;
     long nt = 0;
     int over = 0;
     for (int k = 0; k < s->np; k++) {
@@ -568,6 +623,8 @@ int ffc_scene_augment(ffc_scene *s, const double u[], long *bad)
     *bad = -1;
     if (!s || !u) return FFC_ERR_NULL;
     if (!penalties_set(s, bad)) return FFC_ERR_VALUE;
+    int fs = mortar_follow(s, u, bad); /* the mortar segments at u */
+    if (fs) return fs;
     for (int k = 0; k < s->np; k++) {
         scene_pair *p = &s->p[k];
         if (p->o.method == FFC_METHOD_NTS) continue;
@@ -623,7 +680,7 @@ int ffc_scene_reset(ffc_scene *s)
         memset(&p->st, 0, sizeof p->st);
         memset(&p->st_step, 0, sizeof p->st_step);
         for (long l = 0; l < p->nl; l++) p->links[l].mf = -1;
-        if (p->o.method == FFC_METHOD_MORTAR) p->nl = 0;
+        if (p->o.method == FFC_METHOD_MORTAR) p->nl = p->ne = p->nmp = 0;
         if (p->nodes) {
             int st = nts_alloc(s, p);
             if (st) return st;

@@ -633,13 +633,13 @@ static void facet_normal(const double X[3][3], double n[3])
 #define MORTAR_PTS 96   /* points of one segment: <= 4 triangles x 12 (degree 6) */
 #define MORTAR_CAND 4096 /* master facets overlapping one slave facet's box */
 
-int ffc_mortar_search(const ffc_tree *t, long nfs, const long Fs[], long nvs, const double x[], int qdeg,
-                      const ffc_search_opts *o, long cap, ffc_link links[], long *need)
+int ffc_mortar_pairs(const ffc_tree *t, long nfs, const long Fs[], long nvs, const double x[],
+                     const ffc_search_opts *o, long cap, long pairs[], long *need)
 {
     long dummy;
     if (!need) need = &dummy;
     *need = 0;
-    if (!t || !Fs || !x || (cap > 0 && !links)) return FFC_ERR_NULL;
+    if (!t || !Fs || !x || (cap > 0 && !pairs)) return FFC_ERR_NULL;
     if (t->nn != 3) return FFC_ERR_NODES;
     if (nfs <= 0) return FFC_ERR_EMPTY;
     if (cap < 0 || t->nv > nvs) return FFC_ERR_SIZE;
@@ -648,7 +648,6 @@ int ffc_mortar_search(const ffc_tree *t, long nfs, const long Fs[], long nvs, co
     if (!(o->capture_rel >= 0) || !(o->capture_abs >= 0) || !(o->edge_tol >= 0) || isinf(o->capture_rel) ||
         isinf(o->capture_abs))
         return FFC_ERR_VALUE;
-    if (ffc_quad_size(qdeg) < 0) return FFC_ERR_QUAD;
     for (long k = 0; k < 3 * nfs; k++)
         if (Fs[k] < 0 || Fs[k] >= nvs) return FFC_ERR_INDEX;
     for (long k = 0; k < 3 * t->nf; k++)
@@ -668,6 +667,8 @@ int ffc_mortar_search(const ffc_tree *t, long nfs, const long Fs[], long nvs, co
         for (int i = 0; i < 3; i++) { box[i] -= rmax; box[3 + i] += rmax; }
         const long nc = tree_overlap(t, box, MORTAR_CAND, cand);
         if (nc > MORTAR_CAND) return FFC_ERR_SIZE;
+        long nf = 0;
+        int captured = 0;
         for (long c = 0; c < nc; c++) {
             const long mf = t->slot2f[cand[c]];
             double Xm[3][3], nm[3];
@@ -679,8 +680,9 @@ int ffc_mortar_search(const ffc_tree *t, long nfs, const long Fs[], long nvs, co
             facet_normal(Xm, nm);
             if (!(ffc__dot(ns, nm) < 0)) continue; /* not facing */
             double cov;
-            const int np = ffc_mortar_segment(qdeg, (const double(*)[3])Xs, (const double(*)[3])Xm, MORTAR_PTS, xi,
-                                              w, &cov);
+            /* (degree 1: one point per segment triangle, enough for its centre) */
+            const int np = ffc_mortar_segment(1, (const double(*)[3])Xs, (const double(*)[3])Xm, MORTAR_PTS, xi, w, 0,
+                                              NULL, NULL, NULL, &cov);
             if (np < 0) return np;
             if (np == 0) continue;
             /* capture: the distance from the segment's centre to the master plane */
@@ -698,28 +700,37 @@ int ffc_mortar_search(const ffc_tree *t, long nfs, const long Fs[], long nvs, co
             ffc_proj pr;
             int st = ffc__project_free(3, (const double(*)[3])Xm, pc, &pr);
             if (st < 0) return st;
-            if (fabs(pr.gap) > fmax(o->capture_abs, o->capture_rel * t->hf[mf])) continue;
-            for (int q = 0; q < np; q++, n++) {
-                if (n >= cap) continue;
-                double p[3];
-                for (int i = 0; i < 3; i++)
-                    p[i] = Xs[0][i] + xi[q][0] * (Xs[1][i] - Xs[0][i]) + xi[q][1] * (Xs[2][i] - Xs[0][i]);
-                if ((st = ffc__project_free(3, (const double(*)[3])Xm, p, &pr)) < 0) return st;
-                ffc_link *lk = &links[n];
-                lk->sf = f;
-                lk->q = -1;
-                lk->xs[0] = xi[q][0];
-                lk->xs[1] = xi[q][1];
-                lk->w = w[q];
-                lk->mf = mf;
-                lk->xm[0] = pr.xi[0];
-                lk->xm[1] = pr.xi[1];
-                lk->gap = pr.gap;
-                for (int i = 0; i < 3; i++) lk->n[i] = pr.n[i];
-                lk->where = FFC_FOOT_INSIDE;
+            /* a facet within the capture distance of one master facet takes all those it faces and
+               overlaps: no facet is cut by the edge of the capture band (its dual basis would be
+               that of a part, and move with it) */
+            if (fabs(pr.gap) <= fmax(o->capture_abs, o->capture_rel * t->hf[mf])) captured = 1;
+            if (n + nf < cap) {
+                pairs[2 * (n + nf)] = f;
+                pairs[2 * (n + nf) + 1] = mf;
             }
+            nf++;
         }
+        if (captured) n += nf;
     }
     *need = n;
     return n > cap ? FFC_ERR_CAPACITY : (n <= 2147483647L ? (int)n : FFC_ERR_SIZE);
+}
+
+int ffc_mortar_search(const ffc_tree *t, long nfs, const long Fs[], long nvs, const double x[], int qdeg,
+                      const ffc_search_opts *o, long cap, ffc_link links[], long *need)
+{
+    long dummy;
+    if (!need) need = &dummy;
+    *need = 0;
+    if (!t || !Fs || !x || (cap > 0 && !links)) return FFC_ERR_NULL;
+    if (ffc_quad_size(qdeg) < 0) return FFC_ERR_QUAD;
+    long np = 0;
+    int st = ffc_mortar_pairs(t, nfs, Fs, nvs, x, o, 0, NULL, &np);
+    if (st < 0 && st != FFC_ERR_CAPACITY) return st;
+    long *pairs = malloc((size_t)(2 * np + 2) * sizeof *pairs);
+    if (!pairs) return FFC_ERR_MEMORY;
+    st = ffc_mortar_pairs(t, nfs, Fs, nvs, x, o, np, pairs, &np);
+    if (st >= 0) st = ffc_mortar_links(nfs, Fs, t->nf, t->F, nvs, x, qdeg, np, pairs, cap, links, need, 0, NULL, NULL);
+    free(pairs);
+    return st;
 }
