@@ -369,6 +369,161 @@ static int segment_motion(const ffc_effects *fx, const ffc_pair *P, const ffc_la
     return FFC_OK;
 }
 
+/* The motion of a partly covered facet's dual basis (dual_motion) */
+typedef struct {
+    long f;             /* slave facet */
+    long e0, e1;        /* its linked points: w->L[e0 .. e1) */
+    int nd;             /* dofs of dA */
+    long dof[9 + 9 * 64]; /* the facet's nodes, then its master facets' nodes (x, y, z each) */
+    double dA[9][9 + 9 * 64]; /* d A_ab / d dof */
+} ndual_t;
+
+/* Formulation (the dual basis of a partly covered facet).  With the
+ * covered part's c = sum_q w_q, D_a = sum_q w_q N_a, M_ab = sum_q w_q N_a N_b
+ * (integrands fixed in xi: they change through the segments' edges only,
+ * dI = sum_b F(b) dv_b) and s = min(1, (2 c - 1/2) / 0.4),
+ *     A = s D M^-1 + (1 - s) I,
+ *     dA = ds (D M^-1 - I) + s (dD M^-1 - D M^-1 dM M^-1),  ds = 5 dc (s < 1).
+ * Phi_a(q) = sum_b A_ab N_b(q) then moves by sum_b dA_ab N_b(q): in the
+ * residual (t_q = sum_a Phi_a t_a, T_q = sum_a Phi_a T_a),
+ *     K += sum_ab Y_ab dA_ab^T,  Y_ab = sum_q da N_b(q) (-t_a G_q + S_q^T T_a),
+ * and in each nodal sum (nodal_dual_terms).  Fully covered facets have a
+ * fixed A (dA = 0 up to round-off) and are skipped; so are facets whose
+ * basis is standard (s = 0 or M nearly singular).  Returns the count of
+ * facets written into F (at most cap), or an error. */
+static long dual_motion(const ffc_pair *P, const ffc_link links[], const ffc_law *law, const nodal_t *w, int fric,
+                        ndual_t F[], long cap, long Ti[], long Tj[], double Tv[], long tcap, long *nt, int *ok)
+{
+    long nf = 0;
+    for (long e0 = 0; e0 < w->n;) {
+        const long f = links[w->L[e0].k].sf;
+        long e1 = e0;
+        while (e1 < w->n && links[w->L[e1].k].sf == f) e1++;
+        double c = 0.0, D[3] = {0, 0, 0}, M[3][3] = {{0}};
+        for (long e = e0; e < e1; e++) {
+            const ffc_link *lk = &links[w->L[e].k];
+            const double L[3] = {1.0 - lk->xs[0] - lk->xs[1], lk->xs[0], lk->xs[1]};
+            c += lk->w;
+            for (int a = 0; a < 3; a++) {
+                D[a] += lk->w * L[a];
+                for (int b = 0; b < 3; b++) M[a][b] += lk->w * L[a] * L[b];
+            }
+        }
+        const long first = e0;
+        e0 = e1;
+        double C[3][3];
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) {
+                const int a1 = (a + 1) % 3, a2 = (a + 2) % 3, b1 = (b + 1) % 3, b2 = (b + 2) % 3;
+                C[a][b] = M[a1][b1] * M[a2][b2] - M[a1][b2] * M[a2][b1];
+            }
+        const double det = M[0][0] * C[0][0] + M[0][1] * C[0][1] + M[0][2] * C[0][2];
+        const double tr = (M[0][0] + M[1][1] + M[2][2]) / 3.0;
+        const double s = fmin(1.0, (2.0 * c - 0.5) / 0.4);
+        if (c >= 0.5 * (1.0 - 1e-12) || !(s > 0.0) || !(det > 1e-8 * tr * tr * tr)) continue;
+        if (nf >= cap) return FFC_ERR_CAPACITY;
+        ndual_t *d = &F[nf];
+        d->f = f;
+        d->e0 = first;
+        d->e1 = e1;
+        d->nd = 9;
+        for (int a = 0; a < 3; a++)
+            for (int i = 0; i < 3; i++) d->dof[3 * a + i] = 3 * P->Fs[3 * f + a] + i;
+        double Mi[3][3], Pm[3][3];
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) Mi[a][b] = C[b][a] / det;
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) Pm[a][b] = D[a] * Mi[a][b];
+        for (int ab = 0; ab < 9; ab++)
+            for (int l = 0; l < 9 + 9 * 64; l++) d->dA[ab][l] = 0.0;
+        int over = 0;
+        for (long b = 0; b < law->nedge && !over; b++) {
+            const ffc_mortar_edge *ed = &law->edge[b];
+            if (ed->sf != f) continue;
+            /* the edge point's dofs in d: the slave facet's 9, then its master facet's 9 */
+            int pos[18];
+            for (int l = 0; l < 9; l++) pos[l] = l;
+            for (int a = 0; a < 3 && !over; a++)
+                for (int i = 0; i < 3; i++) {
+                    const long dof = 3 * P->Fm[3 * ed->mf + a] + i;
+                    int p = -1;
+                    for (int k = 9; k < d->nd && p < 0; k++)
+                        if (d->dof[k] == dof) p = k;
+                    if (p < 0) {
+                        if (d->nd >= 9 + 9 * 64) { over = 1; break; }
+                        p = d->nd++;
+                        d->dof[p] = dof;
+                    }
+                    pos[9 + 3 * a + i] = p;
+                }
+            if (over) break;
+            const double L[3] = {1.0 - ed->xs[0] - ed->xs[1], ed->xs[0], ed->xs[1]};
+            /* dc, dD, dM of this point, then into dA */
+            double dM[3][3], dD[3];
+            for (int a = 0; a < 3; a++) {
+                dD[a] = L[a];
+                for (int bb = 0; bb < 3; bb++) dM[a][bb] = L[a] * L[bb];
+            }
+            double G[3][3]; /* dA per unit dv: ds (P - I) + s (dD Mi - P dM Mi) */
+            double PdM[3][3];
+            for (int a = 0; a < 3; a++)
+                for (int bb = 0; bb < 3; bb++) {
+                    PdM[a][bb] = 0.0;
+                    for (int k = 0; k < 3; k++) PdM[a][bb] += Pm[a][k] * dM[k][bb];
+                }
+            for (int a = 0; a < 3; a++)
+                for (int bb = 0; bb < 3; bb++) {
+                    double x = dD[a] * Mi[a][bb];
+                    for (int k = 0; k < 3; k++) x -= PdM[a][k] * Mi[k][bb];
+                    G[a][bb] = s * x + (s < 1.0 ? 5.0 * (Pm[a][bb] - (a == bb)) : 0.0);
+                }
+            for (int l = 0; l < 18; l++) {
+                if (ed->dv[l] == 0.0) continue;
+                for (int a = 0; a < 3; a++)
+                    for (int bb = 0; bb < 3; bb++) d->dA[3 * a + bb][pos[l]] += G[a][bb] * ed->dv[l];
+            }
+        }
+        if (over) continue; /* (a partly covered facet over more than 64 master facets: its basis' motion left out) */
+        /* the residual's part: K += sum_ab Y_ab dA_ab^T, Y summed over the facet's points first
+           (its dofs: those of dA, the facet's and its master facets' nodes) */
+        static const int nyc = 9 + 9 * 64;
+        double Y[9][9 + 9 * 64];
+        for (int ab = 0; ab < 9; ab++)
+            for (int l = 0; l < nyc; l++) Y[ab][l] = 0.0;
+        for (long e = first; e < e1 && !over; e++) {
+            const nlink_t *E = &w->L[e];
+            const ffc_link *lk = &links[E->k];
+            const double L[3] = {1.0 - lk->xs[0] - lk->xs[1], lk->xs[0], lk->xs[1]};
+            for (int k = 0; k < E->nd; k++) {
+                int p = -1;
+                for (int l = 0; l < d->nd && p < 0; l++)
+                    if (d->dof[l] == E->dof[k]) p = l;
+                if (p < 0) { /* a dof of the points that no moving edge has (dA = 0 there) */
+                    if (d->nd >= nyc) { over = 1; break; }
+                    p = d->nd++;
+                    d->dof[p] = E->dof[k];
+                    for (int ab = 0; ab < 9; ab++) d->dA[ab][p] = 0.0;
+                }
+                for (int a = 0; a < 3; a++) {
+                    const long v = P->Fs[3 * f + a];
+                    double y = -w->tn[v] * E->G[k];
+                    if (fric && w->T[v].f.state != FFC_FRIC_OPEN) y += w->F[e].sw[k] * w->T[v].f.t[k % 3];
+                    for (int bb = 0; bb < 3; bb++) Y[3 * a + bb][p] += E->da * L[bb] * y;
+                }
+            }
+        }
+        if (over) continue;
+        for (int ab = 0; ab < 9; ab++)
+            for (int k = 0; k < d->nd; k++) {
+                if (Y[ab][k] == 0.0) continue;
+                for (int l = 0; l < d->nd; l++)
+                    if (d->dA[ab][l] != 0.0) *ok &= emit(nt, tcap, Ti, Tj, Tv, d->dof[k], d->dof[l], Y[ab][k] * d->dA[ab][l]);
+            }
+        nf++;
+    }
+    return nf;
+}
+
 int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double qw[], int nq, long nl,
                         const ffc_link links[], const double lambda[], const double lam_t[],
                         const ffc_law *law, double R[], long cap, long Ti[], long Tj[], double Tv[],
@@ -437,10 +592,44 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
             }
         free(fill);
     }
+    /* the dual basis of partly covered facets moves with their segments */
+    ndual_t *DF = NULL;
+    long ndf = 0, *ds = NULL, *dl = NULL;
+    if (ne > 0 && law->dual) {
+        long cnt = 0;
+        for (long e0 = 0; e0 < w.n;) {
+            const long f = links[w.L[e0].k].sf;
+            double c = 0.0;
+            while (e0 < w.n && links[w.L[e0].k].sf == f) c += links[w.L[e0++].k].w;
+            cnt += c < 0.5 * (1.0 - 1e-12);
+        }
+        if (cnt > 0) {
+            DF = malloc((size_t)cnt * sizeof *DF);
+            ds = calloc((size_t)P->nv + 1, sizeof *ds);
+            dl = malloc((size_t)(3 * cnt) * sizeof *dl);
+            if (!DF || !ds || !dl) s = FFC_ERR_MEMORY;
+            else {
+                ndf = dual_motion(P, links, law, &w, fric, DF, cnt, Ti, Tj, Tv, cap, &nt, &ok);
+                if (ndf < 0) s = (int)ndf;
+            }
+            if (s) { free(DF); free(ds); free(dl); free(EB); free(es); free(el); ffc__nodal_free(&w); return s; }
+            for (long i = 0; i < ndf; i++)
+                for (int a = 0; a < 3; a++) ds[P->Fs[3 * DF[i].f + a] + 1]++;
+            for (long v = 0; v < P->nv; v++) ds[v + 1] += ds[v];
+            long *fill = calloc((size_t)P->nv, sizeof *fill);
+            if (!fill) { free(DF); free(ds); free(dl); free(EB); free(es); free(el); ffc__nodal_free(&w); return FFC_ERR_MEMORY; }
+            for (long i = 0; i < ndf; i++)
+                for (int a = 0; a < 3; a++) {
+                    const long v = P->Fs[3 * DF[i].f + a];
+                    dl[ds[v] + fill[v]++] = i;
+                }
+            free(fill);
+        }
+    }
     if (want_k) {
         /* material stiffness, node by node: links of each slave node */
         nodework_t k;
-        if (nodework_alloc(P, links, &w, &k)) { free(EB); free(es); free(el); ffc__nodal_free(&w); return FFC_ERR_MEMORY; }
+        if (nodework_alloc(P, links, &w, &k)) { free(DF); free(ds); free(dl); free(EB); free(es); free(el); ffc__nodal_free(&w); return FFC_ERR_MEMORY; }
         for (long v = 0; v < P->nv; v++) {
             if (!w.on[v] || !(w.Wn[v] > 0.0)) continue;
             const double W = w.Wn[v], gt = w.Gn[v] / W, c = eps / W;
@@ -492,6 +681,40 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
                     }
                 }
             }
+            for (long m = ndf > 0 ? ds[v] : 0; ndf > 0 && m < ds[v + 1]; m++) { /* the dual basis' motion */
+                const ndual_t *d = &DF[dl[m]];
+                int av = -1;
+                for (int a = 0; a < 3; a++)
+                    if (P->Fs[3 * d->f + a] == v) av = a;
+                double Z[3] = {0, 0, 0}, Zr[3][3] = {{0}}, Zn[3][3] = {{0}};
+                for (long e = d->e0; e < d->e1; e++) {
+                    const nlink_t *E = &w.L[e];
+                    const ffc_link *lk = &links[E->k];
+                    const double L[3] = {1.0 - lk->xs[0] - lk->xs[1], lk->xs[0], lk->xs[1]};
+                    for (int b = 0; b < 3; b++) {
+                        Z[b] += L[b] * E->da * (E->g - gt);
+                        if (!ft) continue;
+                        for (int i = 0; i < 3; i++) {
+                            Zr[b][i] += L[b] * E->da * (w.F[e].r[i] - Tn->r[i]) / W;
+                            Zn[b][i] += L[b] * E->da * E->n[i];
+                        }
+                    }
+                }
+                for (int l = 0; l < d->nd; l++) {
+                    const long p = k.pos[d->dof[l]];
+                    if (p < 0) continue; /* (the facet's links put every dof there) */
+                    for (int b = 0; b < 3; b++) {
+                        const double x = d->dA[3 * av + b][l];
+                        if (x == 0.0) continue;
+                        k.Cv[p] += Z[b] * x;
+                        if (!ft) continue;
+                        for (int i = 0; i < 3; i++) {
+                            k.Rt[3 * p + i] += Zr[b][i] * x;
+                            k.Nt[3 * p + i] += Zn[b][i] * x;
+                        }
+                    }
+                }
+            }
             for (long i = 0; i < nloc; i++)
                 for (long j = 0; j < nloc; j++)
                     if (k.Bv[i] != 0.0 && k.Cv[j] != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[i], k.loc[j], c * k.Bv[i] * k.Cv[j]);
@@ -528,6 +751,9 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
     free(EB);
     free(es);
     free(el);
+    free(DF);
+    free(ds);
+    free(dl);
     *ntrip = nt;
     ffc__nodal_free(&w);
     return ok ? FFC_OK : FFC_ERR_CAPACITY;
