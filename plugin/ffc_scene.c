@@ -411,12 +411,13 @@ static int positions(ffc_scene *s, const double u[], long *bad)
  * moving-edge points (grown as needed; on failure the pair keeps its
  * arrays) and the dual basis of each slave facet from them; returns the
  * link count or an error.  Called at every evaluation: the segments follow
- * the surfaces, and the tangent has their motion (ffc_law.edge). */
-static int mortar_clip(const ffc_scene *s, scene_pair *p)
+ * the surfaces, and the tangent has their motion (ffc_law.edge; the edge
+ * points only when edges != 0: a residual alone does not need them). */
+static int mortar_clip(const ffc_scene *s, scene_pair *p, int edges)
 {
     long ln = 0, en = 0;
     int st = ffc_mortar_links(p->nfs, p->Fs, p->nfm, p->Fm, s->nv, s->x, p->o.qdeg, p->nmp, p->mp, p->lcap, p->links,
-                              &ln, p->ecap, p->edges, &en);
+                              &ln, edges ? p->ecap : 0, edges ? p->edges : NULL, &en);
     if (st == FFC_ERR_CAPACITY) {
         const long lc = ln > p->lcap ? ln + ln / 4 + 16 : p->lcap, ec = en > p->ecap ? en + en / 4 + 16 : p->ecap;
         ffc_link *l = lc > p->lcap ? malloc(lc * sizeof *l) : NULL;
@@ -425,7 +426,7 @@ static int mortar_clip(const ffc_scene *s, scene_pair *p)
         if (l) { free(p->links); p->links = l; p->lcap = lc; }
         if (e) { free(p->edges); p->edges = e; p->ecap = ec; }
         st = ffc_mortar_links(p->nfs, p->Fs, p->nfm, p->Fm, s->nv, s->x, p->o.qdeg, p->nmp, p->mp, p->lcap, p->links,
-                              &ln, p->ecap, p->edges, &en);
+                              &ln, edges ? p->ecap : 0, edges ? p->edges : NULL, &en);
     }
     if (st < 0) return st;
     p->nl = ln;
@@ -472,11 +473,12 @@ static int mortar_search(const ffc_scene *s, scene_pair *p)
     }
     if (st < 0) return st;
     p->nmp = st;
-    return mortar_clip(s, p);
+    return mortar_clip(s, p, 0);
 }
 
-/* Every mortar pair's segments at u (positions into s->x) */
-static int mortar_follow(ffc_scene *s, const double u[], long *bad)
+/* Every mortar pair's segments at u (positions into s->x); edges: with
+ * their moving-edge points (for a consistent tangent) */
+static int mortar_follow(ffc_scene *s, const double u[], int edges, long *bad)
 {
     int any = 0;
     for (int k = 0; k < s->np; k++) any |= s->p[k].o.method == FFC_METHOD_MORTAR;
@@ -485,7 +487,7 @@ static int mortar_follow(ffc_scene *s, const double u[], long *bad)
     if (st) return st;
     for (int k = 0; k < s->np; k++) {
         if (s->p[k].o.method != FFC_METHOD_MORTAR) continue;
-        st = mortar_clip(s, &s->p[k]);
+        st = mortar_clip(s, &s->p[k], edges);
         if (st < 0) { *bad = k; return st; }
     }
     return FFC_OK;
@@ -592,7 +594,7 @@ int ffc_scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], 
     if (tangent != FFC_TANGENT_NONE && (!Ti || !Tj || !Tv)) return FFC_ERR_NULL;
     if (cap < 0) return FFC_ERR_SIZE;
     if (!penalties_set(s, bad)) return FFC_ERR_VALUE;
-    int fs = mortar_follow(s, u, bad); /* the mortar segments at u */
+    int fs = mortar_follow(s, u, tangent == FFC_TANGENT_CONSISTENT, bad); /* the mortar segments at u */
     if (fs) return fs;
     long nt = 0;
     int over = 0;
@@ -623,7 +625,7 @@ int ffc_scene_augment(ffc_scene *s, const double u[], long *bad)
     *bad = -1;
     if (!s || !u) return FFC_ERR_NULL;
     if (!penalties_set(s, bad)) return FFC_ERR_VALUE;
-    int fs = mortar_follow(s, u, bad); /* the mortar segments at u */
+    int fs = mortar_follow(s, u, 0, bad); /* the mortar segments at u */
     if (fs) return fs;
     for (int k = 0; k < s->np; k++) {
         scene_pair *p = &s->p[k];
