@@ -601,8 +601,12 @@ enum {
     FFC_METHOD_AL = 0,          /* surface-to-surface augmented Lagrangian */
     FFC_METHOD_NTS = 1,         /* node-to-surface Lagrange multipliers (linear facets; see ffc_nts_*) */
     FFC_METHOD_MORTAR = 2       /* segment-to-segment augmented Lagrangian: the nodal law on the
-                                   segment links of ffc_mortar_search (linear facets; qdeg is the
-                                   rule on each segment triangle) */
+                                   segment links (linear facets; qdeg is the rule on each segment
+                                   triangle).  ffc_scene_search chooses the facet pairs
+                                   (ffc_mortar_pairs); every assembly and augmentation clips
+                                   them again at its u (ffc_mortar_links), and the consistent
+                                   tangent has the segments' motion (ffc_law.edge);
+                                   ffc_scene_points reports the segments of the last of those */
 };
 enum {
     FFC_TANGENT_NONE = 0,       /* residual only */
