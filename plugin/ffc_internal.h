@@ -31,4 +31,18 @@ int ffc__project_free(int nn, const double X[][3], const double p[3], ffc_proj *
  * (ffc_reduced.c). */
 int ffc__lu_solve(long m, double A[], long piv[], double b[]);
 
+/* The dual basis of a linear slave facet from its covered part
+ * (ffc_mortar.c, see ffc_dual_basis): the moments c = sum_q w_q,
+ * D_a = sum_q w_q N_a, M_ab = sum_q w_q N_a N_b of its points, */
+typedef struct {
+    double c, D[3], M[3][3];
+} ffc__dual_moments;
+/* a point added to them, */
+void ffc__dual_add(ffc__dual_moments *m, const double xi[2], double w);
+/* the blend s of the dual basis and M^-1 into Mi (s = 0: the standard
+ * basis, for a coverage below half or a nearly singular M), */
+double ffc__dual_blend(const ffc__dual_moments *m, double Mi[3][3]);
+/* and A = s D M^-1 + (1 - s) I. */
+void ffc__dual_matrix(const ffc__dual_moments *m, double A[3][3]);
+
 #endif

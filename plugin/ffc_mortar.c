@@ -241,6 +241,41 @@ int ffc_mortar_segment(int qdeg, const double Xs[3][3], const double Xm[3][3], l
  * Both parts give sum_q w_q Phi_a = D_aa, so the nodal weights stay
  * positive.  A nearly singular M (det M below 1e-8 (tr M / 3)^3) keeps
  * A = I. */
+void ffc__dual_add(ffc__dual_moments *m, const double xi[2], double w)
+{
+    const double N[3] = {1.0 - xi[0] - xi[1], xi[0], xi[1]};
+    m->c += w;
+    for (int a = 0; a < 3; a++) {
+        m->D[a] += w * N[a];
+        for (int b = 0; b < 3; b++) m->M[a][b] += w * N[a] * N[b];
+    }
+}
+
+double ffc__dual_blend(const ffc__dual_moments *m, double Mi[3][3])
+{
+    double C[3][3]; /* cofactors */
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) {
+            const int a1 = (a + 1) % 3, a2 = (a + 2) % 3, b1 = (b + 1) % 3, b2 = (b + 2) % 3;
+            C[a][b] = m->M[a1][b1] * m->M[a2][b2] - m->M[a1][b2] * m->M[a2][b1];
+        }
+    const double det = m->M[0][0] * C[0][0] + m->M[0][1] * C[0][1] + m->M[0][2] * C[0][2];
+    const double tr = (m->M[0][0] + m->M[1][1] + m->M[2][2]) / 3.0;
+    const double s = fmin(1.0, (2.0 * m->c - 0.5) / (0.9 - 0.5)); /* covered fraction 2 c: 0.5 -> 0, 0.9 -> 1 */
+    if (!(s > 0.0) || !(det > 1e-8 * tr * tr * tr)) return 0.0;
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) Mi[a][b] = C[b][a] / det; /* M^-1 = C^T / det */
+    return s;
+}
+
+void ffc__dual_matrix(const ffc__dual_moments *m, double A[3][3])
+{
+    double Mi[3][3];
+    const double s = ffc__dual_blend(m, Mi);
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) A[a][b] = (s > 0.0 ? s * m->D[a] * Mi[a][b] : 0.0) + (1.0 - s) * (a == b);
+}
+
 int ffc_dual_basis(long n, const double xi[][2], const double w[], double A[3][3])
 {
     if (!A) return FFC_ERR_NULL;
@@ -249,28 +284,13 @@ int ffc_dual_basis(long n, const double xi[][2], const double w[], double A[3][3
     if (n < 0) return FFC_ERR_SIZE;
     if (n == 0) return FFC_OK;
     if (!xi || !w) return FFC_ERR_NULL;
-    double M[3][3] = {{0}}, D[3] = {0}, cov = 0.0;
+    ffc__dual_moments m;
+    memset(&m, 0, sizeof m);
     for (long q = 0; q < n; q++) {
-        cov += w[q];
         if (!isfinite(xi[q][0]) || !isfinite(xi[q][1]) || !isfinite(w[q])) return FFC_ERR_NONFINITE;
-        const double N[3] = {1.0 - xi[q][0] - xi[q][1], xi[q][0], xi[q][1]};
-        for (int a = 0; a < 3; a++) {
-            D[a] += w[q] * N[a];
-            for (int b = 0; b < 3; b++) M[a][b] += w[q] * N[a] * N[b];
-        }
+        ffc__dual_add(&m, xi[q], w[q]);
     }
-    double C[3][3]; /* cofactors */
-    for (int a = 0; a < 3; a++)
-        for (int b = 0; b < 3; b++) {
-            const int a1 = (a + 1) % 3, a2 = (a + 2) % 3, b1 = (b + 1) % 3, b2 = (b + 2) % 3;
-            C[a][b] = M[a1][b1] * M[a2][b2] - M[a1][b2] * M[a2][b1];
-        }
-    const double det = M[0][0] * C[0][0] + M[0][1] * C[0][1] + M[0][2] * C[0][2];
-    const double tr = (M[0][0] + M[1][1] + M[2][2]) / 3.0;
-    const double s = fmin(1.0, (2.0 * cov - 0.5) / (0.9 - 0.5)); /* covered fraction 2 cov: 0.5 -> 0, 0.9 -> 1 */
-    if (!(s > 0.0) || !(det > 1e-8 * tr * tr * tr)) return FFC_OK;
-    for (int a = 0; a < 3; a++)
-        for (int b = 0; b < 3; b++) A[a][b] = s * D[a] * C[b][a] / det + (1.0 - s) * (a == b); /* M^-1 = C^T / det */
+    ffc__dual_matrix(&m, A);
     return FFC_OK;
 }
 

@@ -84,6 +84,21 @@ static void touching_stick(nfn_t *T, const double lam_t[3], double eps_t)
     }
 }
 
+/* The multiplier shape values at xs of slave facet f: linear on the
+ * facet's vertices (for 6-node facets too: quadratic vertex shape
+ * functions integrate to zero, which would leave vertex nodes without
+ * weight), in the facet's dual basis Phi_a = sum_b A_ab N_b with
+ * law->dual (ffc_dual_basis); N[ns] */
+static void multiplier_shape(const ffc_law *law, int ns, long f, const double xs[2], double N[FFC_MAXNODES])
+{
+    ffc_shape(3, xs, N, NULL);
+    for (int a = 3; a < ns; a++) N[a] = 0.0;
+    if (law->dual) {
+        const double *A = law->dual + 9 * f, L[3] = {N[0], N[1], N[2]};
+        for (int a = 0; a < 3; a++) N[a] = A[3 * a] * L[0] + A[3 * a + 1] * L[1] + A[3 * a + 2] * L[2];
+    }
+}
+
 /* pass 1: geometry of every linked point, nodal sums and pressures; with
  * friction (lam_t != NULL) the slips and the nodal return maps */
 int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw[], int nq, long nl,
@@ -127,15 +142,7 @@ int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw
         e->g = st.gap;
         e->da = st.da;
         for (int i = 0; i < 3; i++) e->n[i] = st.n[i];
-        /* multipliers are linear on the facet's vertices (for 6-node facets
-         * too: quadratic vertex shape functions integrate to zero, which
-         * would leave vertex nodes without weight) */
-        ffc_shape(3, lk->xs, e->N, NULL);
-        for (int a = 3; a < P->ns; a++) e->N[a] = 0.0;
-        if (law->dual) { /* dual basis Phi_a = sum_b A_ab N_b of the facet (ffc_dual_basis) */
-            const double *A = law->dual + 9 * lk->sf, L[3] = {e->N[0], e->N[1], e->N[2]};
-            for (int a = 0; a < 3; a++) e->N[a] = A[3 * a] * L[0] + A[3 * a + 1] * L[1] + A[3 * a + 2] * L[2];
-        }
+        multiplier_shape(law, P->ns, lk->sf, lk->xs, e->N);
         if (lam_t) {
             nfl_t *fl = &w->F[w->n];
             ffc__link_slip(&g, CP3(ln.Ds), CP3(ln.Dm), fl->r);
@@ -342,11 +349,7 @@ static int segment_motion(const ffc_effects *fx, const ffc_pair *P, const ffc_la
         for (int i = 0; i < 3; i++) e->n[i] = st.n[i];
         nlink_t nl;
         memset(&nl, 0, sizeof nl);
-        ffc_shape(3, tmp.xs, nl.N, NULL);
-        if (law->dual) {
-            const double *A = law->dual + 9 * tmp.sf, L[3] = {nl.N[0], nl.N[1], nl.N[2]};
-            for (int a = 0; a < 3; a++) nl.N[a] = A[3 * a] * L[0] + A[3 * a + 1] * L[1] + A[3 * a + 2] * L[2];
-        }
+        multiplier_shape(law, P->ns, tmp.sf, tmp.xs, nl.N);
         for (int a = 0; a < 3; a++) e->N[a] = nl.N[a];
         const double t = ffc__nodal_point_pressure(P, &tmp, &nl, w->tn);
         double F[FFC_MAXDOF], Tq[3] = {0, 0, 0};
@@ -399,28 +402,14 @@ static long dual_motion(const ffc_pair *P, const ffc_link links[], const ffc_law
         const long f = links[w->L[e0].k].sf;
         long e1 = e0;
         while (e1 < w->n && links[w->L[e1].k].sf == f) e1++;
-        double c = 0.0, D[3] = {0, 0, 0}, M[3][3] = {{0}};
-        for (long e = e0; e < e1; e++) {
-            const ffc_link *lk = &links[w->L[e].k];
-            const double L[3] = {1.0 - lk->xs[0] - lk->xs[1], lk->xs[0], lk->xs[1]};
-            c += lk->w;
-            for (int a = 0; a < 3; a++) {
-                D[a] += lk->w * L[a];
-                for (int b = 0; b < 3; b++) M[a][b] += lk->w * L[a] * L[b];
-            }
-        }
+        ffc__dual_moments mo;
+        memset(&mo, 0, sizeof mo);
+        for (long e = e0; e < e1; e++) ffc__dual_add(&mo, links[w->L[e].k].xs, links[w->L[e].k].w);
         const long first = e0;
         e0 = e1;
-        double C[3][3];
-        for (int a = 0; a < 3; a++)
-            for (int b = 0; b < 3; b++) {
-                const int a1 = (a + 1) % 3, a2 = (a + 2) % 3, b1 = (b + 1) % 3, b2 = (b + 2) % 3;
-                C[a][b] = M[a1][b1] * M[a2][b2] - M[a1][b2] * M[a2][b1];
-            }
-        const double det = M[0][0] * C[0][0] + M[0][1] * C[0][1] + M[0][2] * C[0][2];
-        const double tr = (M[0][0] + M[1][1] + M[2][2]) / 3.0;
-        const double s = fmin(1.0, (2.0 * c - 0.5) / 0.4);
-        if (c >= 0.5 * (1.0 - 1e-12) || !(s > 0.0) || !(det > 1e-8 * tr * tr * tr)) continue;
+        double Mi[3][3];
+        const double s = mo.c >= 0.5 * (1.0 - 1e-12) ? 0.0 : ffc__dual_blend(&mo, Mi);
+        if (!(s > 0.0)) continue; /* fully covered (A fixed) or standard */
         if (nf >= cap) return FFC_ERR_CAPACITY;
         ndual_t *d = &F[nf];
         d->f = f;
@@ -429,11 +418,9 @@ static long dual_motion(const ffc_pair *P, const ffc_link links[], const ffc_law
         d->nd = 9;
         for (int a = 0; a < 3; a++)
             for (int i = 0; i < 3; i++) d->dof[3 * a + i] = 3 * P->Fs[3 * f + a] + i;
-        double Mi[3][3], Pm[3][3];
+        double Pm[3][3];
         for (int a = 0; a < 3; a++)
-            for (int b = 0; b < 3; b++) Mi[a][b] = C[b][a] / det;
-        for (int a = 0; a < 3; a++)
-            for (int b = 0; b < 3; b++) Pm[a][b] = D[a] * Mi[a][b];
+            for (int b = 0; b < 3; b++) Pm[a][b] = mo.D[a] * Mi[a][b];
         for (int ab = 0; ab < 9; ab++)
             for (int l = 0; l < 9 + 9 * 64; l++) d->dA[ab][l] = 0.0;
         int over = 0;

@@ -8,6 +8,7 @@
 
 #include "ffc.h"
 #include "ffc_bulk.h"
+#include "ffc_internal.h"
 
 typedef struct {
     ffc_pair_opts o;   /* method, law and search options */
@@ -432,26 +433,15 @@ static int mortar_clip(const ffc_scene *s, scene_pair *p, int edges)
     p->nl = ln;
     p->ne = en;
     /* the dual basis of each facet from its consecutive links */
-    double(*xi)[2] = malloc((p->nl + 1) * sizeof *xi), *w = malloc((p->nl + 1) * sizeof *w);
-    if (!xi || !w) { free(xi); free(w); return FFC_ERR_MEMORY; }
     for (long f = 0; f < p->nfs; f++)
         for (int i = 0; i < 9; i++) p->dual[9 * f + i] = i % 4 == 0;
-    for (long a = 0; a < p->nl && st >= 0;) {
-        long b = a;
-        while (b < p->nl && p->links[b].sf == p->links[a].sf) b++;
-        for (long k = a; k < b; k++) {
-            xi[k - a][0] = p->links[k].xs[0];
-            xi[k - a][1] = p->links[k].xs[1];
-            w[k - a] = p->links[k].w;
-        }
-        double A[3][3];
-        int e = ffc_dual_basis(b - a, (const double(*)[2])xi, w, A);
-        if (e < 0) st = e;
-        else memcpy(p->dual + 9 * p->links[a].sf, A, sizeof A);
-        a = b;
+    for (long a = 0; a < p->nl;) {
+        const long f = p->links[a].sf;
+        ffc__dual_moments m;
+        memset(&m, 0, sizeof m);
+        for (; a < p->nl && p->links[a].sf == f; a++) ffc__dual_add(&m, p->links[a].xs, p->links[a].w);
+        ffc__dual_matrix(&m, (double(*)[3])(p->dual + 9 * f));
     }
-    free(xi);
-    free(w);
     return st;
 }
 
