@@ -3,7 +3,8 @@
 #   make            library + plugin
 #   make demo       set-up, build, Hertz case study end to end (quadratic, h_c = 0.05)
 #   make test       set-up, build, whole test suite
-#   make run CASE=<name> ARGS="<options>"   one case study -> results/<name>.json
+#   make run CASE=<name> ARGS="<options>" [NP=<n>]   one case study -> results/<name>.json
+#                   (NP: n ranks of FreeFem++-mpi, the bulk factorized by parallel MUMPS)
 #   make exercise N=<k> ARGS="<options> name=value"   exercise k, checked (README "Exercises")
 #   make exercises-check   every exercise's reference solution and common slip
 
@@ -21,8 +22,8 @@ COBJ    := $(patsubst plugin/%.c,$(B)/obj/%.o,$(CSRC))
 CTESTS  := $(patsubst tests/c/%.c,$(B)/tests/%,$(wildcard tests/c/test_*.c))
 HDRS    := include/ffc.h $(wildcard plugin/*.h)
 
-.PHONY: all lib plugin setup test demo run ctest clean meshes
-all: lib plugin meshes
+.PHONY: all lib plugin mpi mpitest setup test demo run ctest clean meshes
+all: lib plugin mpi meshes
 
 lib: $(B)/libffc.a
 plugin: $(B)/ffcontact.so
@@ -38,6 +39,27 @@ $(B)/libffc.a: $(COBJ)
 $(B)/ffcontact.so: plugin/ffcontact.cpp $(B)/libffc.a include/ffc.h
 	$(CXX) $(FFFLAGS) $< $(B)/libffc.a $(CLIBS) -o $@
 
+# the plugin for FreeFem++-mpi (scripts/ff -np N): the same sources with
+# -DFFC_MPI, parallel MUMPS for the bulk factorization when ranks > 1
+MPICC   ?= mpicc
+MPICXX  ?= mpicxx
+MB      := $(B)/mpi
+MOBJ    := $(patsubst plugin/%.c,$(MB)/obj/%.o,$(CSRC))
+mpi: $(MB)/ffcontact.so
+$(MB)/obj/%.o: plugin/%.c $(HDRS)
+	@mkdir -p $(dir $@)
+	$(MPICC) $(CFLAGS) -DFFC_MPI -c $< -o $@
+$(MB)/libffc.a: $(MOBJ)
+	@rm -f $@
+	ar rcs $@ $^
+$(MB)/ffcontact.so: plugin/ffcontact.cpp $(MB)/libffc.a include/ffc.h
+	$(MPICXX) $(FFFLAGS) -DFFC_MPI $< $(MB)/libffc.a -ldmumps $(CLIBS) -o $@
+$(MB)/tests/%: tests/mpi/%.c tests/c/ffc_test.h $(MB)/libffc.a
+	@mkdir -p $(dir $@)
+	$(MPICC) $(CFLAGS) -DFFC_MPI -Itests/c $< $(MB)/libffc.a -lcmocka -ldmumps $(CLIBS) -o $@
+MPITESTS := $(patsubst tests/mpi/%.c,$(MB)/tests/%,$(wildcard tests/mpi/test_*.c))
+mpitest: $(MPITESTS)
+
 $(B)/tests/%: tests/c/%.c tests/c/ffc_test.h $(B)/libffc.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -Itests/c $< $(B)/libffc.a -lcmocka $(CLIBS) -o $@
@@ -48,7 +70,7 @@ setup:
 	@sh scripts/setup.sh
 
 test: setup
-	@$(MAKE) --no-print-directory all ctest asan-build
+	@$(MAKE) --no-print-directory all ctest mpitest asan-build
 	@sh tests/run.sh
 
 demo: setup
@@ -59,7 +81,7 @@ run: all
 	@test -n "$(CASE)" || { echo "usage: make run CASE=<name> ARGS=\"<options>\""; exit 2; }
 	@test -f scripts/$(CASE).edp || { echo "no case study scripts/$(CASE).edp"; exit 2; }
 	@mkdir -p results
-	sh scripts/ff scripts/$(CASE).edp $(ARGS)
+	sh scripts/ff $(if $(NP),-np $(NP)) scripts/$(CASE).edp $(ARGS)
 
 clean:
 	rm -rf $(B)
@@ -83,12 +105,15 @@ $(B)/meshes/%.msh: meshes/%.geo
 $(B)/bench_search: tests/bench/bench_search.c $(B)/libffc.a
 	$(CC) $(CFLAGS) $< $(B)/libffc.a $(CLIBS) -o $@
 
-.PHONY: bench bench-search bench-contact
+.PHONY: bench bench-search bench-contact bench-mpi
 bench-search: $(B)/bench_search
 	@sh tests/bench/bench_search.sh
 bench-contact: all
 	@sh tests/bench/bench_contact.sh $(MODE)
-bench: bench-search bench-contact
+# 1 against N ranks (NP, default 2); MODE=full adds ~150k dofs
+bench-mpi: all
+	@sh tests/bench/bench_mpi.sh $(or $(MODE),quick) $(or $(NP),2)
+bench: bench-search bench-contact bench-mpi
 
 # sanitizers and fuzzing (clang from Debian)
 ASAN := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all

@@ -30,7 +30,8 @@ enum {
     FFC_ERR_MEMORY = -13,         /* allocation failed */
     FFC_ERR_INVERTED = -14,       /* a facet turned inside out (normal reversed) */
     FFC_ERR_SINGULAR = -15,       /* a linear system is singular (zero pivot) */
-    FFC_ERR_FUSED = -16           /* slave and master surfaces share their nodes */
+    FFC_ERR_FUSED = -16,          /* slave and master surfaces share their nodes */
+    FFC_ERR_UNAVAILABLE = -17     /* this build lacks the engine asked for (MPI, MUMPS) */
 };
 
 /* Human-readable text of a status code (static string, never NULL). */
@@ -826,7 +827,11 @@ typedef struct {
                             of the same support (count) */
     long m;              /* contact dofs in the compliance (count) */
     double shift;        /* s (force/length; 0: no shift) */
-    double rcond;        /* CHOLMOD's estimate of the factor's reciprocal condition (1) */
+    double rcond;        /* CHOLMOD's estimate of the factor's reciprocal condition (1; 0 with MUMPS,
+                            which refuses negative pivots and those below 1e-12 of K's norm instead) */
+    int ranks;           /* the ranks that share the factorization (1: CHOLMOD) */
+    double factor_mb;    /* MUMPS: this rank's factorization memory (MB; 0 with CHOLMOD) */
+    double factor_mb_max; /* MUMPS: the largest rank's (MB) */
     double residual;     /* last solve: the free rows' residual / (|b_free| + max free
                             diagonal |x_free|), or a Dirichlet row's residual / (its
                             diagonal |x|_inf), the larger (1) */
@@ -840,6 +845,47 @@ typedef struct {
  * dof), FFC_ERR_SIZE when n is not 3 nv. */
 int ffc_scene_set_bulk(ffc_scene *s, long n, long nt, const long Ti[], const long Tj[], const double Tv[], long mmax,
                        long *bad);
+
+/* Where a scene's bulk matrix is factorized and solved. */
+typedef enum {
+    FFC_ENGINE_CHOLMOD = 0,   /* CHOLMOD, in this process (the default) */
+    FFC_ENGINE_MUMPS = 1      /* parallel MUMPS over an MPI communicator: every rank of it holds the
+                                 same scene and makes the same calls in the same order; each hands
+                                 MUMPS a share of K's entries, and every rank receives each solution */
+} ffc_engine;
+typedef struct {
+    ffc_engine engine;   /* the engine */
+    int comm;            /* FFC_ENGINE_MUMPS: the communicator as a Fortran handle
+                            (MPI_Comm_c2f(MPI_COMM_WORLD)) */
+} ffc_parallel;
+/* Sets the engine of the next ffc_scene_set_bulk.  FFC_ERR_VALUE for an
+ * unknown engine, FFC_ERR_UNAVAILABLE for MUMPS in a build without MPI
+ * (ffc_has_mpi() == 0) or before MPI_Init (at ffc_scene_set_bulk). */
+int ffc_scene_set_parallel(ffc_scene *s, const ffc_parallel *p);
+/* Solves A x = b[n] once, A a general sparse matrix (a full Newton
+ * system: non-symmetric with friction, indefinite with multipliers) from
+ * its triplets (Ti, Tj, Tv)[nt] (duplicates summed), by parallel MUMPS
+ * over p->comm: every rank passes the same arguments and each hands MUMPS
+ * its share of the entries; x on every rank.  FFC_ERR_INDEX /
+ * FFC_ERR_NONFINITE (*bad = the triplet, or the entry of b),
+ * FFC_ERR_SINGULAR (a pivot below 1e-14 of A's norm), FFC_ERR_UNAVAILABLE
+ * without MPI or for p->engine = FFC_ENGINE_CHOLMOD (one process: FreeFEM's
+ * UMFPACK). */
+int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], const long Tj[], const double Tv[],
+                       const double b[], double x[], long *bad);
+/* 1 in a build with MPI and parallel MUMPS (-DFFC_MPI), else 0. */
+int ffc_has_mpi(void);
+
+/* MPI_COMM_WORLD: this process's rank, the ranks, the communicator as a
+ * Fortran handle (0, 1, 0 in a build without MPI or outside MPI_Init). */
+int ffc_mpi_world(int *rank, int *size, int *fcomm);
+/* v[n] replaced on every rank by its sum (op 0), largest (1) or smallest
+ * (2) value over the ranks; a collective call (nothing with one rank). */
+int ffc_mpi_allreduce(double v[], long n, int op);
+/* Waits for every rank (nothing with one rank). */
+int ffc_mpi_barrier(void);
+/* This process's peak resident memory (MB). */
+double ffc_peak_mb(void);
 
 /* Solves (K + Kc) x = b[n], Kc from the triplets (Ti, Tj, Tv)[nt].
  * FFC_ERR_EMPTY without a K; FFC_ERR_INDEX / FFC_ERR_NONFINITE (*bad =

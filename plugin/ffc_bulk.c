@@ -11,6 +11,7 @@
 
 #include "ffc_bulk.h"
 #include "ffc_internal.h"
+#include "ffc_mumps.h"
 
 enum { BLOCK = 32 };   /* compliance columns per block back-solve */
 
@@ -28,6 +29,9 @@ struct ffc__bulk {
     cholmod_factor *L;         /* of K + diag(sh); NULL until the first solve */
     cholmod_dense *B, *X, *Y, *E;       /* one right-hand side and solve2's work */
     cholmod_dense *Bb, *Xb, *Yb, *Eb;   /* a block of BLOCK right-hand sides */
+    ffc__mumps *mp;            /* parallel MUMPS in place of CHOLMOD's factor (NULL: CHOLMOD); B and Bb
+                                  are then its right-hand sides, solved in place */
+    int factored;              /* 1: a factor (L, or MUMPS's) is held */
     long m, ld;                /* contact dofs, leading dimension of G */
     long *dof;                 /* [ld] contact dofs */
     double *G;                 /* [ld*ld] compliance (column-major) */
@@ -72,6 +76,7 @@ static void bulk_free_factor(ffc__bulk *b)
     for (size_t k = 0; k < sizeof d / sizeof *d; k++)
         if (*d[k]) cholmod_free_dense(d[k], &b->cc);
     if (b->L) cholmod_free_factor(&b->L, &b->cc);
+    b->factored = 0;
     b->m = 0;
 }
 
@@ -80,6 +85,7 @@ void ffc__bulk_free(ffc__bulk *b)
     if (!b) return;
     bulk_free_factor(b);
     if (b->started) cholmod_finish(&b->cc);
+    ffc__mumps_free(b->mp);
     free(b->Ti); free(b->Tj); free(b->Tv); free(b->diag); free(b->big); free(b->sh);
     free(b->dof); free(b->G); free(b->pos); free(b->nd); free(b->A); free(b->piv);
     free(b->xc); free(b->w); free(b->r); free(b->dx); free(b->t); free(b->kv);
@@ -186,6 +192,18 @@ int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const do
     return FFC_OK;
 }
 
+int ffc__bulk_set_mumps(ffc__bulk *b, int fcomm)
+{
+    if (!b) return FFC_ERR_NULL;
+    ffc__mumps *m = NULL;
+    const int st = ffc__mumps_create(fcomm, &m);
+    if (st) return st;
+    bulk_free_factor(b);
+    ffc__mumps_free(b->mp);
+    b->mp = m;
+    return FFC_OK;
+}
+
 /* grows G (and the dense work) to hold m contact dofs */
 static int grow(ffc__bulk *b, long m)
 {
@@ -220,8 +238,12 @@ static int grow(ffc__bulk *b, long m)
 static int backsolve(ffc__bulk *b, const double rhs[], double y[])
 {
     memcpy(b->B->x, rhs, (size_t)b->n * sizeof(double));
-    if (!cholmod_solve2(CHOLMOD_A, b->L, b->B, NULL, &b->X, NULL, &b->Y, &b->E, &b->cc)) return FFC_ERR_MEMORY;
-    memcpy(y, b->X->x, (size_t)b->n * sizeof(double));
+    if (b->mp) {
+        const int st = ffc__mumps_solve(b->mp, 1, b->B->x);
+        if (st) return st;
+    } else if (!cholmod_solve2(CHOLMOD_A, b->L, b->B, NULL, &b->X, NULL, &b->Y, &b->E, &b->cc))
+        return FFC_ERR_MEMORY;
+    memcpy(y, b->mp ? b->B->x : b->X->x, (size_t)b->n * sizeof(double));
     b->info.backsolves++;
     for (long i = 0; i < b->n; i++)
         if (!isfinite(y[i])) return FFC_ERR_NONFINITE;
@@ -257,12 +279,21 @@ static int factorize(ffc__bulk *b, long nnew, const long nd[])
     for (long i = 0; i < b->n; i++)
         if (b->sh[i] != 0.0 || b->big[i]) { ti[c] = tj[c] = (int)i; tv[c] = b->big[i] ? b->kfree : b->sh[i]; c++; }
     T->nnz = (size_t)c;
-    cholmod_sparse *A = cholmod_triplet_to_sparse(T, (size_t)c, &b->cc);
+    int st = FFC_OK;
+    cholmod_sparse *A = NULL;
+    if (b->mp) { /* MUMPS: the same lower triangle, shared out over the ranks */
+        st = ffc__mumps_factor(b->mp, b->n, c, ti, tj, tv);
+        b->info.rcond = 0.0;
+    } else {
+        A = cholmod_triplet_to_sparse(T, (size_t)c, &b->cc);
+        if (!A) st = FFC_ERR_MEMORY;
+        else {
+            b->L = cholmod_analyze(A, &b->cc);
+            if (!b->L) st = FFC_ERR_MEMORY;
+        }
+    }
     cholmod_free_triplet(&T, &b->cc);
-    if (!A) return FFC_ERR_MEMORY;
-    b->L = cholmod_analyze(A, &b->cc);
-    int st = b->L ? FFC_OK : FFC_ERR_MEMORY;
-    if (!st) {
+    if (!st && !b->mp) {
         cholmod_factorize(A, b->L, &b->cc);
         if (b->cc.status == CHOLMOD_NOT_POSDEF || b->L->minor < b->L->n) st = FFC_ERR_SINGULAR;
         else if (b->cc.status < CHOLMOD_OK) st = FFC_ERR_MEMORY;
@@ -271,7 +302,7 @@ static int factorize(ffc__bulk *b, long nnew, const long nd[])
             if (!(b->info.rcond >= 1e-12)) st = FFC_ERR_SINGULAR;
         }
     }
-    cholmod_free_sparse(&A, &b->cc);
+    if (A) cholmod_free_sparse(&A, &b->cc);
     if (!st) {
         b->B = cholmod_zeros((size_t)b->n, 1, CHOLMOD_REAL, &b->cc);
         b->Bb = cholmod_zeros((size_t)b->n, BLOCK, CHOLMOD_REAL, &b->cc);
@@ -282,6 +313,7 @@ static int factorize(ffc__bulk *b, long nnew, const long nd[])
         for (long k = 0; k < nnew; k++) b->sh[nd[k]] = 0.0;
         return st;
     }
+    b->factored = 1;
     b->info.factorizations++;
     b->info.shift = nnew ? b->kfree : 0.0;
     return FFC_OK;
@@ -309,10 +341,12 @@ static int add_columns(ffc__bulk *b, long nnew, const long nd[])
         double *bx = b->Bb->x;
         memset(bx, 0, (size_t)n * BLOCK * sizeof(double));
         for (long k = 0; k < nb; k++) bx[nd[k0 + k] + k * n] = 1.0;
-        if (!cholmod_solve2(CHOLMOD_A, b->L, b->Bb, NULL, &b->Xb, NULL, &b->Yb, &b->Eb, &b->cc))
+        if (b->mp) {
+            if ((st = ffc__mumps_solve(b->mp, nb, bx))) return st;
+        } else if (!cholmod_solve2(CHOLMOD_A, b->L, b->Bb, NULL, &b->Xb, NULL, &b->Yb, &b->Eb, &b->cc))
             return FFC_ERR_MEMORY;
         b->info.backsolves += nb;
-        const double *xb = b->Xb->x;
+        const double *xb = b->mp ? bx : b->Xb->x;
         for (long k = 0; k < nb; k++) {
             st = ffc_reduced_add(n, b->ld, b->m, b->dof, b->G, xb + k * n, nd[k0 + k]);
             if (st) return st;
@@ -417,7 +451,7 @@ int ffc__bulk_solve(ffc__bulk *b, long nt, const long Ti[], const long Tj[], con
         if (bad) *bad = b->m + nnew;
         return FFC_ERR_CAPACITY;
     }
-    if (!b->L) {
+    if (!b->factored) {
         st = factorize_first(b, nnew, b->nd);
         if (st) return st;
     }
@@ -452,6 +486,8 @@ void ffc__bulk_info(const ffc__bulk *b, ffc_solve_info *info)
 {
     if (b) *info = b->info;
     else memset(info, 0, sizeof *info);
+    info->ranks = 1;
+    if (b && b->mp) ffc__mumps_info(b->mp, &info->ranks, &info->factor_mb, &info->factor_mb_max);
 }
 
 long ffc__bulk_n(const ffc__bulk *b) { return b ? b->n : 0; }
@@ -557,7 +593,7 @@ static int first_factor(ffc__bulk *b, long nreach, const long reach[], long nc, 
                         long *bad)
 {
     int st = FFC_OK;
-    if (!b->L) {
+    if (!b->factored) {
         st = factorize(b, 0, NULL);
         for (int pass = 0; pass < 2 && st == FFC_ERR_SINGULAR; pass++) {
             long nset = 0;
@@ -939,7 +975,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
         st = reached(b, 0, &nnew, bad);
     }
     long *reach = NULL;
-    if (!st && !b->L) { /* (the force's dofs kept: free_dofs writes b->nd) */
+    if (!st && !b->factored) { /* (the force's dofs kept: free_dofs writes b->nd) */
         reach = malloc((size_t)(nnew + 1) * sizeof(long));
         if (!reach) st = FFC_ERR_MEMORY;
         else memcpy(reach, b->nd, (size_t)nnew * sizeof(long));
@@ -1291,7 +1327,7 @@ int ffc__bulk_saddle(ffc__bulk *b, long nt, const long Bi[], const long Bj[], co
     for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = -1;
     if (b->m + nnew > b->mmax) { *bad = b->m + nnew; return FFC_ERR_CAPACITY; }
     int st = FFC_OK;
-    if (!b->L && (st = factorize_first(b, nnew, b->nd))) return st;
+    if (!b->factored && (st = factorize_first(b, nnew, b->nd))) return st;
     if ((st = add_to_c(b, nnew, b->nd, b->mmax, bad)) || (st = shifted_into_c(b, b->mmax, bad))) return st;
     const int coupled = b->info.shift != 0.0; /* (the factor is of K + S) */
     b->info.solves++;

@@ -15,6 +15,9 @@ typedef struct ffc__bulk ffc__bulk;
 int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long mmax,
                      ffc__bulk **out, long *bad);
 void ffc__bulk_free(ffc__bulk *b);
+/* Factorizes with parallel MUMPS over the Fortran communicator fcomm
+ * instead of CHOLMOD (FFC_ERR_UNAVAILABLE in a build without MPI). */
+int ffc__bulk_set_mumps(ffc__bulk *b, int fcomm);
 long ffc__bulk_n(const ffc__bulk *b);
 /* The mean diagonal of K's rows that are not Dirichlet rows (force/length). */
 double ffc__bulk_kfree(const ffc__bulk *b);

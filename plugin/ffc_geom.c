@@ -29,6 +29,7 @@ const char *ffc_strerror(int status)
     case FFC_ERR_INVERTED: return "inverted element (signed volume reversed or zero)";
     case FFC_ERR_SINGULAR: return "singular linear system (zero pivot)";
     case FFC_ERR_FUSED: return "slave and master surfaces share their nodes";
+    case FFC_ERR_UNAVAILABLE: return "this build lacks the engine asked for (MPI, parallel MUMPS)";
     default: return "unknown status";
     }
 }

@@ -52,6 +52,7 @@ struct ffc_scene {
     int np, cap;       /* pairs, capacity */
     scene_pair *p;     /* [cap] */
     ffc__bulk *bulk;   /* the bulk factorization (NULL: none set) */
+    ffc_parallel par;  /* where the bulk matrix is factorized */
     double *fixed;     /* [nv*3] prescribed dofs (nonzero), or NULL: none given */
 };
 
@@ -939,9 +940,31 @@ int ffc_scene_set_bulk(ffc_scene *s, long n, long nt, const long Ti[], const lon
     ffc__bulk *b = NULL;
     int st = ffc__bulk_create(n, nt, Ti, Tj, Tv, mmax, &b, bad);
     if (st) return st;
+    if (s->par.engine == FFC_ENGINE_MUMPS && (st = ffc__bulk_set_mumps(b, s->par.comm))) {
+        ffc__bulk_free(b);
+        return st;
+    }
     ffc__bulk_free(s->bulk);
     s->bulk = b;
     return FFC_OK;
+}
+
+int ffc_scene_set_parallel(ffc_scene *s, const ffc_parallel *p)
+{
+    if (!s || !p) return FFC_ERR_NULL;
+    if (p->engine != FFC_ENGINE_CHOLMOD && p->engine != FFC_ENGINE_MUMPS) return FFC_ERR_VALUE;
+    if (p->engine == FFC_ENGINE_MUMPS && !ffc_has_mpi()) return FFC_ERR_UNAVAILABLE;
+    s->par = *p;
+    return FFC_OK;
+}
+
+int ffc_has_mpi(void)
+{
+#ifdef FFC_MPI
+    return 1;
+#else
+    return 0;
+#endif
 }
 
 int ffc_scene_solve(ffc_scene *s, long nt, const long Ti[], const long Tj[], const double Tv[], const double b[],

@@ -380,6 +380,24 @@ double ffcTime()
     return duration<double>(steady_clock::now().time_since_epoch()).count();
 }
 
+// ffcRank(), ffcRanks(): this process's rank and the ranks (0 and 1 in the
+// plugin without MPI); ffcRankSum(x), ffcRankMax(x): x summed / largest over
+// the ranks (a collective call); ffcBarrier(); ffcPeakMB(): this process's
+// peak resident memory (MB).
+long ffcRank() { int r; ffc_mpi_world(&r, nullptr, nullptr); return r; }
+long ffcRanks() { int n; ffc_mpi_world(nullptr, &n, nullptr); return n; }
+double rankReduce(const char *fn, double x, int op)
+{
+    double v = x;
+    const int st = ffc_mpi_allreduce(&v, 1, op);
+    if (st) fail(fn, ffc_strerror(st));
+    return v;
+}
+double ffcRankSum(double x) { return rankReduce("ffcRankSum", x, 0); }
+double ffcRankMax(double x) { return rankReduce("ffcRankMax", x, 1); }
+long ffcBarrier() { return ffc_mpi_barrier(); }
+double ffcPeakMB() { return ffc_peak_mb(); }
+
 } // namespace
 
 // ---------------------------------------------------------------------------
@@ -732,6 +750,13 @@ FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh)
     }
     int st = ffc_scene_create(order == 2 ? 6 : 3, d->nn, X, d->m.nt, T.data(), &fx, &d->s);
     if (st) scene_error(fn, st, -1, "the scene");
+    int rank, ranks, fcomm;   // several ranks (FreeFem++-mpi): the bulk is factorized by parallel MUMPS
+    ffc_mpi_world(&rank, &ranks, &fcomm);
+    if (ranks > 1) {
+        const ffc_parallel par = {FFC_ENGINE_MUMPS, fcomm};
+        st = ffc_scene_set_parallel(d->s, &par);
+        if (st) scene_error(fn, st, -1, "the scene's parallel engine");
+    }
     if (C->d) C->destroy();
     C->d = d.release();
     return C;
@@ -1493,7 +1518,44 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "fallbacks") return d.newton.fallbacks;
     if (k == "condensedDofs") return d.newton.m;
     if (k == "support") return d.newton.support;
-    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, evalTime, fallbacks, condensedDofs, support");
+    if (k == "ranks") return in.ranks;
+    if (k == "factorMB") return in.factor_mb;
+    if (k == "factorMBmax") return in.factor_mb_max;
+    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax");
+    return 0;
+}
+
+// ffcParallelSolve(A, b, x): A x = b by parallel MUMPS over the ranks of
+// FreeFem++-mpi (every rank the same A and b; x on every rank). 0 solved,
+// 1 singular (the caller cuts the step, as for a failed UMFPACK solve).
+long parallelSolve(Matrice_Creuse<double> *const &A, KN<double> *const &b, KN<double> *const &x)
+{
+    const char *fn = "ffcParallelSolve";
+    int ranks, fcomm;
+    ffc_mpi_world(nullptr, &ranks, &fcomm);
+    if (ranks < 2)
+        fail(fn, "needs several ranks (sh scripts/ff -np N, the plugin built with MPI); one process solves with set(A, solver = UMFPACK)");
+    std::vector<long> Ti, Tj;
+    std::vector<double> Tv;
+    const long n = matrix_triplets(fn, "A", A, Ti, Tj, Tv);
+    if (!b) fail(fn, "argument 'b': array is not defined");
+    if (b->N() != n) fail(fn, "argument 'b': size " + std::to_string(b->N()) + ", expected " + std::to_string(n));
+    need_finite(fn, "b", b);
+    if (!x) fail(fn, "argument 'x': array is not defined");
+    std::vector<double> bv(n), xv(n);
+    for (long i = 0; i < n; i++) bv[i] = (*b)[i];
+    const ffc_parallel par = {FFC_ENGINE_MUMPS, fcomm};
+    long bad = -1;
+    const int st = ffc_parallel_solve(&par, n, (long)Ti.size(), Ti.data(), Tj.data(), Tv.data(), bv.data(), xv.data(), &bad);
+    if (st == FFC_ERR_SINGULAR) return 1;
+    if (st == FFC_ERR_NONFINITE || st == FFC_ERR_INDEX) {
+        std::ostringstream s;
+        s << "argument 'A': entry (" << Ti[bad] << ", " << Tj[bad] << ") = " << num(Tv[bad]) << ": " << ffc_strerror(st);
+        fail(fn, s.str());
+    }
+    if (st) fail(fn, ffc_strerror(st));
+    x->resize(n);
+    for (long i = 0; i < n; i++) (*x)[i] = xv[i];
     return 0;
 }
 
@@ -1659,6 +1721,13 @@ static void init()
     Global.Add("ffcArea", "(",
                new OneOperator3_<double, pmesh3, KN<long> *, KN<double> *>(ffcArea));
     Global.Add("ffcTime", "(", new OneOperator0<double>(ffcTime));
+    Global.Add("ffcRank", "(", new OneOperator0<long>(ffcRank));
+    Global.Add("ffcParallelSolve", "(", new OneOperator3_<long, Matrice_Creuse<double> *, KN<double> *, KN<double> *>(parallelSolve));
+    Global.Add("ffcRanks", "(", new OneOperator0<long>(ffcRanks));
+    Global.Add("ffcBarrier", "(", new OneOperator0<long>(ffcBarrier));
+    Global.Add("ffcPeakMB", "(", new OneOperator0<double>(ffcPeakMB));
+    Global.Add("ffcRankSum", "(", new OneOperator1<double, double>(ffcRankSum));
+    Global.Add("ffcRankMax", "(", new OneOperator1<double, double>(ffcRankMax));
     Global.Add("ffcMassSpread", "(",
                new OneOperator3_<long, Matrice_Creuse<double> *, KN<double> *, Matrice_Creuse<double> *>(massSpread));
     Global.Add("ffcInverted", "(", new OneOperator2_<long, pmesh3, KN<double> *>(ffcInverted));

@@ -12,8 +12,8 @@ log=$(mktemp)
 report() { echo "FAIL: $1"; sed 's/^/    /' "$log" | tail -40; }
 
 # a cmocka binary: counts its passed and failed tests (a crash counts one)
-cmocka() {   # cmocka <binary> <what>
-    "$1" >"$log" 2>&1
+cmocka() {   # cmocka <command> <what>
+    $1 >"$log" 2>&1
     rc=$?
     p=$(sed -n 's/.*\[  PASSED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)
     f=$(sed -n 's/.*\[  FAILED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)
@@ -29,6 +29,27 @@ for t in build/tests/test_*; do
     case "$t" in *"$pat"*) ;; *) continue ;; esac
     cmocka "$t" "C unit tests"
 done
+
+# the C tests of the parallel engine, on 2 ranks (mpiexec; timeout: a rank
+# left waiting in a collective call is a failure, not a hang)
+for t in build/mpi/tests/test_*; do
+    [ -x "$t" ] || continue
+    case "mpi $t" in *"$pat"*) ;; *) continue ;; esac
+    [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+    cmocka "timeout 300 mpiexec --oversubscribe --bind-to none -np 2 $t" "MPI C unit tests, 2 ranks"
+done
+
+# case studies on 2 and 4 ranks against one process (4 on 2 cores:
+# oversubscribed, correctness only), and the messages when MPI is missing
+case "mpi-answers" in *"$pat"*)
+    for np in 2 4; do
+        if timeout 900 sh tests/mpi/same_answers.sh $np quick >"$log" 2>&1; then pass=$((pass + 1))
+        else fail=$((fail + 1)); report "tests/mpi/same_answers.sh $np"; fi
+    done ;;
+esac
+case "mpi-missing" in *"$pat"*)
+    if sh tests/mpi/missing.sh >"$log" 2>&1; then pass=$((pass + 1)); else fail=$((fail + 1)); report "tests/mpi/missing.sh"; fi ;;
+esac
 
 # the same C tests under AddressSanitizer and UndefinedBehaviorSanitizer
 for t in build/asan/test_*; do

@@ -223,9 +223,36 @@ static void test_bad_input(void **state)
     ffc_scene_free(s);
 }
 
+/* a build without MPI: one rank, and parallel MUMPS refused by name */
+static void test_no_mpi(void **state)
+{
+    (void)state;
+    ffc_scene *s = scene();
+    int r = -1, n = -1, fc = -1;
+    assert_int_equal(ffc_mpi_world(&r, &n, &fc), FFC_OK);
+    assert_int_equal(r, 0);
+    assert_int_equal(n, 1);
+    assert_int_equal(ffc_has_mpi(), 0);
+    const ffc_parallel mumps = {FFC_ENGINE_MUMPS, 0}, chol = {FFC_ENGINE_CHOLMOD, 0};
+    assert_int_equal(ffc_scene_set_parallel(s, &mumps), FFC_ERR_UNAVAILABLE);
+    assert_non_null(strstr(ffc_strerror(FFC_ERR_UNAVAILABLE), "MUMPS"));
+    assert_int_equal(ffc_scene_set_parallel(s, &chol), FFC_OK);
+    double v[2] = {3.0, -1.0};
+    assert_int_equal(ffc_mpi_allreduce(v, 2, 1), FFC_OK);
+    assert_close(v[0], 3.0, 0.0);
+    assert_int_equal(ffc_mpi_allreduce(v, 2, 5), FFC_ERR_VALUE);
+    assert_int_equal(ffc_mpi_allreduce(NULL, 2, 0), FFC_ERR_NULL);
+    assert_true(ffc_peak_mb() > 0.0);
+    ffc_solve_info in;
+    assert_int_equal(ffc_scene_solve_info(s, &in), FFC_OK);
+    assert_int_equal(in.ranks, 1);
+    ffc_scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_no_mpi),
         cmocka_unit_test(test_matches_dense),
         cmocka_unit_test(test_mostly_dirichlet),
         cmocka_unit_test(test_columns_grow),

@@ -1,0 +1,75 @@
+/* ffc_mpi.c: the ranks of MPI_COMM_WORLD, reductions over them, and this
+ * process's peak memory (a build without -DFFC_MPI is one rank). */
+#include <sys/resource.h>
+
+#include "ffc.h"
+
+#ifdef FFC_MPI
+#include <mpi.h>
+
+static int running(void)
+{
+    int init = 0, fin = 0;
+    MPI_Initialized(&init);
+    MPI_Finalized(&fin);
+    return init && !fin;
+}
+
+int ffc_mpi_world(int *rank, int *size, int *fcomm)
+{
+    int r = 0, n = 1;
+    if (running()) {
+        MPI_Comm_rank(MPI_COMM_WORLD, &r);
+        MPI_Comm_size(MPI_COMM_WORLD, &n);
+    }
+    if (rank) *rank = r;
+    if (size) *size = n;
+    if (fcomm) *fcomm = running() ? (int)MPI_Comm_c2f(MPI_COMM_WORLD) : 0;
+    return FFC_OK;
+}
+
+int ffc_mpi_allreduce(double v[], long n, int op)
+{
+    if (n < 0 || n > 2147483647L) return FFC_ERR_SIZE;
+    if (n > 0 && !v) return FFC_ERR_NULL;
+    if (op < 0 || op > 2) return FFC_ERR_VALUE;
+    if (!running() || n == 0) return FFC_OK;
+    const MPI_Op o = op == 0 ? MPI_SUM : op == 1 ? MPI_MAX : MPI_MIN;
+    return MPI_Allreduce(MPI_IN_PLACE, v, (int)n, MPI_DOUBLE, o, MPI_COMM_WORLD) == MPI_SUCCESS ? FFC_OK
+                                                                                                : FFC_ERR_UNAVAILABLE;
+}
+
+int ffc_mpi_barrier(void)
+{
+    if (running()) MPI_Barrier(MPI_COMM_WORLD);
+    return FFC_OK;
+}
+
+#else
+
+int ffc_mpi_world(int *rank, int *size, int *fcomm)
+{
+    if (rank) *rank = 0;
+    if (size) *size = 1;
+    if (fcomm) *fcomm = 0;
+    return FFC_OK;
+}
+
+int ffc_mpi_allreduce(double v[], long n, int op)
+{
+    if (n < 0) return FFC_ERR_SIZE;
+    if (n > 0 && !v) return FFC_ERR_NULL;
+    if (op < 0 || op > 2) return FFC_ERR_VALUE;
+    return FFC_OK;
+}
+
+int ffc_mpi_barrier(void) { return FFC_OK; }
+
+#endif
+
+double ffc_peak_mb(void)
+{
+    struct rusage u;
+    if (getrusage(RUSAGE_SELF, &u) != 0) return 0.0;
+    return (double)u.ru_maxrss / 1024.0; /* Linux: kilobytes */
+}

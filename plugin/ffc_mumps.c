@@ -1,0 +1,232 @@
+/* ffc_mumps.c: a scene's bulk matrix factorized and solved by parallel
+ * MUMPS over an MPI communicator (built with -DFFC_MPI; without it every
+ * call answers FFC_ERR_UNAVAILABLE). */
+#include <stdlib.h>
+
+#include "ffc.h"
+#include "ffc_mumps.h"
+
+#ifdef FFC_MPI
+
+#include <math.h>
+#include <string.h>
+
+#include <dmumps_c.h>
+#include <mpi.h>
+
+#define ICNTL(k) icntl[(k) - 1]
+#define INFOG(k) infog[(k) - 1]
+#define INFO(k) info[(k) - 1]
+#define CNTL(k) cntl[(k) - 1]
+
+struct ffc__mumps {
+    DMUMPS_STRUC_C id;         /* MUMPS's instance */
+    MPI_Comm comm;             /* its communicator */
+    int rank, ranks;           /* this rank, their count */
+    int have;                  /* 1: initialized (job -1 done) */
+    int factored;              /* 1: a factorization is held */
+    MUMPS_INT *ri, *rj;        /* [nloc] this rank's share of the entries (1-based) */
+    double *rv;                /* [nloc] */
+    long nloc;
+    double mb_rank, mb_max;    /* factorization memory: this rank's, the largest (MB) */
+};
+
+static void call(ffc__mumps *m, int job)
+{
+    m->id.job = job;
+    dmumps_c(&m->id);
+}
+
+int ffc__mumps_create(int fcomm, ffc__mumps **out)
+{
+    if (!out) return FFC_ERR_NULL;
+    *out = NULL;
+    int init = 0;
+    MPI_Initialized(&init);
+    if (!init) return FFC_ERR_UNAVAILABLE;
+    ffc__mumps *m = calloc(1, sizeof *m);
+    if (!m) return FFC_ERR_MEMORY;
+    m->comm = MPI_Comm_f2c((MPI_Fint)fcomm);
+    MPI_Comm_rank(m->comm, &m->rank);
+    MPI_Comm_size(m->comm, &m->ranks);
+    m->id.comm_fortran = (MUMPS_INT)fcomm;
+    m->id.par = 1;   /* the host works too */
+    m->id.sym = 2;   /* symmetric (LDL^T: its null and negative pivots are counted; SYM=1 counts no null ones) */
+    call(m, -1);
+    if (m->id.INFOG(1) < 0) { free(m); return FFC_ERR_MEMORY; }
+    m->have = 1;
+    *out = m;
+    return FFC_OK;
+}
+
+void ffc__mumps_free(ffc__mumps *m)
+{
+    if (!m) return;
+    if (m->have) call(m, -2);
+    free(m->ri); free(m->rj); free(m->rv);
+    free(m);
+}
+
+int ffc__mumps_factor(ffc__mumps *m, long n, long nz, const int ti[], const int tj[], const double tv[])
+{
+    if (!m) return FFC_ERR_NULL;
+    if (n <= 0 || nz < 0 || n > 2147483647L) return FFC_ERR_SIZE;
+    /* this rank's share: the entries [lo, hi) */
+    const long lo = nz * m->rank / m->ranks, hi = nz * (m->rank + 1) / m->ranks, nl = hi - lo;
+    free(m->ri); free(m->rj); free(m->rv);
+    m->ri = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
+    m->rj = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
+    m->rv = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(double));
+    int ok = m->ri && m->rj && m->rv, all = 0;
+    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, m->comm);
+    if (!all) return FFC_ERR_MEMORY;
+    for (long k = 0; k < nl; k++) {
+        m->ri[k] = (MUMPS_INT)ti[lo + k] + 1;
+        m->rj[k] = (MUMPS_INT)tj[lo + k] + 1;
+        m->rv[k] = tv[lo + k];
+    }
+    m->nloc = nl;
+    DMUMPS_STRUC_C *id = &m->id;
+    id->ICNTL(1) = -1; id->ICNTL(2) = -1; id->ICNTL(3) = -1; id->ICNTL(4) = 0;   /* kernels never print */
+    id->ICNTL(18) = 3;       /* distributed input of the entries */
+    id->ICNTL(20) = 0;       /* dense right-hand sides, on the host */
+    id->ICNTL(21) = 0;       /* the solution on the host, over the right-hand sides */
+    id->ICNTL(24) = 1;       /* null pivots detected ... */
+    id->CNTL(3) = 1e-12;     /* ... below 1e-12 of K's norm: CHOLMOD's rcond test */
+    id->n = (MUMPS_INT)n;
+    id->nnz_loc = nl;
+    id->nz_loc = (MUMPS_INT)nl;
+    id->irn_loc = m->ri;
+    id->jcn_loc = m->rj;
+    id->a_loc = m->rv;
+    m->factored = 0;
+    call(m, 4);  /* analysis and factorization */
+    const int e = id->INFOG(1);
+    if (e == -10 || e == -40 || (e >= 0 && (id->INFOG(28) > 0 || id->INFOG(12) > 0))) return FFC_ERR_SINGULAR;
+    if (e == -13 || e == -9 || e == -8 || e == -14 || e == -15 || e == -17 || e == -19) return FFC_ERR_MEMORY;
+    if (e < 0) return FFC_ERR_SINGULAR;
+    m->mb_rank = id->INFO(16);
+    m->mb_max = id->INFOG(21);
+    m->factored = 1;
+    return FFC_OK;
+}
+
+int ffc__mumps_solve(ffc__mumps *m, long nrhs, double B[])
+{
+    if (!m || !B) return FFC_ERR_NULL;
+    if (!m->factored) return FFC_ERR_EMPTY;
+    if (nrhs <= 0 || (long)m->id.n * nrhs > 2147483647L) return FFC_ERR_SIZE;
+    m->id.rhs = B;
+    m->id.nrhs = (MUMPS_INT)nrhs;
+    m->id.lrhs = m->id.n;
+    call(m, 3);
+    if (m->id.INFOG(1) < 0) return FFC_ERR_MEMORY;
+    MPI_Bcast(B, (int)((long)m->id.n * nrhs), MPI_DOUBLE, 0, m->comm);
+    return FFC_OK;
+}
+
+int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], const long Tj[], const double Tv[],
+                       const double b[], double x[], long *bad)
+{
+    if (!p || !b || !x || (nt > 0 && (!Ti || !Tj || !Tv))) return FFC_ERR_NULL;
+    if (n <= 0 || nt < 0 || n > 2147483647L) return FFC_ERR_SIZE;
+    if (p->engine != FFC_ENGINE_MUMPS) return p->engine == FFC_ENGINE_CHOLMOD ? FFC_ERR_UNAVAILABLE : FFC_ERR_VALUE;
+    for (long t = 0; t < nt; t++) {
+        const int st = Ti[t] < 0 || Ti[t] >= n || Tj[t] < 0 || Tj[t] >= n ? FFC_ERR_INDEX
+                       : !isfinite(Tv[t])                                  ? FFC_ERR_NONFINITE
+                                                                           : FFC_OK;
+        if (st) { if (bad) *bad = t; return st; }
+    }
+    for (long i = 0; i < n; i++)
+        if (!isfinite(b[i])) { if (bad) *bad = i; return FFC_ERR_NONFINITE; }
+    int init = 0;
+    MPI_Initialized(&init);
+    if (!init) return FFC_ERR_UNAVAILABLE;
+    ffc__mumps m = {0};
+    m.comm = MPI_Comm_f2c((MPI_Fint)p->comm);
+    MPI_Comm_rank(m.comm, &m.rank);
+    MPI_Comm_size(m.comm, &m.ranks);
+    m.id.comm_fortran = (MUMPS_INT)p->comm;
+    m.id.par = 1;
+    m.id.sym = 0;    /* general: a contact tangent with friction is not symmetric */
+    call(&m, -1);
+    if (m.id.INFOG(1) < 0) return FFC_ERR_MEMORY;
+    const long lo = nt * m.rank / m.ranks, nl = nt * (m.rank + 1) / m.ranks - lo;
+    MUMPS_INT *ri = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
+    MUMPS_INT *rj = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
+    double *rv = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(double));
+    int ok = ri && rj && rv, all = 0, st = FFC_OK;
+    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, m.comm);
+    if (!all) st = FFC_ERR_MEMORY;
+    else {
+        for (long k = 0; k < nl; k++) {
+            ri[k] = (MUMPS_INT)Ti[lo + k] + 1;
+            rj[k] = (MUMPS_INT)Tj[lo + k] + 1;
+            rv[k] = Tv[lo + k];
+        }
+        DMUMPS_STRUC_C *id = &m.id;
+        id->ICNTL(1) = -1; id->ICNTL(2) = -1; id->ICNTL(3) = -1; id->ICNTL(4) = 0;
+        id->ICNTL(18) = 3;
+        id->ICNTL(24) = 1;
+        id->CNTL(3) = 1e-14;
+        id->n = (MUMPS_INT)n;
+        id->nnz_loc = nl;
+        id->nz_loc = (MUMPS_INT)nl;
+        id->irn_loc = ri; id->jcn_loc = rj; id->a_loc = rv;
+        memcpy(x, b, (size_t)n * sizeof(double));
+        id->rhs = x;
+        id->nrhs = 1;
+        id->lrhs = (MUMPS_INT)n;
+        call(&m, 6);  /* analysis, factorization and solve */
+        const int e = id->INFOG(1);
+        if (e == -10 || (e >= 0 && id->INFOG(28) > 0)) st = FFC_ERR_SINGULAR;
+        else if (e < 0) st = FFC_ERR_MEMORY;
+        else MPI_Bcast(x, (int)n, MPI_DOUBLE, 0, m.comm);
+    }
+    call(&m, -2);
+    free(ri); free(rj); free(rv);
+    return st;
+}
+
+void ffc__mumps_info(const ffc__mumps *m, int *ranks, double *mb_rank, double *mb_max)
+{
+    if (ranks) *ranks = m ? m->ranks : 1;
+    if (mb_rank) *mb_rank = m ? m->mb_rank : 0.0;
+    if (mb_max) *mb_max = m ? m->mb_max : 0.0;
+}
+
+#else /* a build without MPI */
+
+int ffc__mumps_create(int fcomm, ffc__mumps **out)
+{
+    (void)fcomm;
+    if (out) *out = NULL;
+    return FFC_ERR_UNAVAILABLE;
+}
+void ffc__mumps_free(ffc__mumps *m) { (void)m; }
+int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], const long Tj[], const double Tv[],
+                       const double b[], double x[], long *bad)
+{
+    (void)n; (void)nt; (void)Ti; (void)Tj; (void)Tv; (void)bad;
+    if (!p || !b || !x) return FFC_ERR_NULL;
+    return FFC_ERR_UNAVAILABLE;
+}
+int ffc__mumps_factor(ffc__mumps *m, long n, long nz, const int ti[], const int tj[], const double tv[])
+{
+    (void)m; (void)n; (void)nz; (void)ti; (void)tj; (void)tv;
+    return FFC_ERR_UNAVAILABLE;
+}
+int ffc__mumps_solve(ffc__mumps *m, long nrhs, double B[])
+{
+    (void)m; (void)nrhs; (void)B;
+    return FFC_ERR_UNAVAILABLE;
+}
+void ffc__mumps_info(const ffc__mumps *m, int *ranks, double *mb_rank, double *mb_max)
+{
+    (void)m;
+    if (ranks) *ranks = 1;
+    if (mb_rank) *mb_rank = 0.0;
+    if (mb_max) *mb_max = 0.0;
+}
+
+#endif

@@ -1,0 +1,23 @@
+/* ffc_mumps.h: the parallel MUMPS engine of a scene's bulk matrix (internal). */
+#ifndef FFC_MUMPS_H
+#define FFC_MUMPS_H
+
+typedef struct ffc__mumps ffc__mumps;
+
+/* A MUMPS instance on the Fortran communicator fcomm (every rank of it
+ * makes the same calls, in the same order, with the same arguments).
+ * FFC_ERR_UNAVAILABLE in a build without MPI. */
+int ffc__mumps_create(int fcomm, ffc__mumps **out);
+void ffc__mumps_free(ffc__mumps *m);
+/* Analysis and LDL^T factorization of the symmetric positive definite
+ * matrix of order n from its lower triangle (ti, tj, tv)[nz] (0-based,
+ * duplicates summed), the same list on every rank: each rank hands MUMPS
+ * its share (distributed input).  FFC_ERR_SINGULAR for a negative pivot
+ * or one below 1e-12 of K's norm, FFC_ERR_MEMORY. */
+int ffc__mumps_factor(ffc__mumps *m, long n, long nz, const int ti[], const int tj[], const double tv[]);
+/* B[n*nrhs] (column-major) overwritten by the solution, on every rank. */
+int ffc__mumps_solve(ffc__mumps *m, long nrhs, double B[]);
+/* ranks, and this rank's and the largest rank's factorization memory (MB) */
+void ffc__mumps_info(const ffc__mumps *m, int *ranks, double *mb_rank, double *mb_max);
+
+#endif

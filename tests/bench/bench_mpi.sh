@@ -1,0 +1,34 @@
+#!/bin/sh
+# bench_mpi.sh: strong scaling of a case on 1 and N ranks (one core per
+# rank: OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1), the runs one after the
+# other in the same invocation. Writes results/bench-mpi.csv
+#   case,options,ranks,dofs,contact_dofs,wall_s,solve_s,speedup,newton,
+#   factor_mb_per_rank,peak_mb_per_rank,F
+# (wall_s: the scene library's time from its start to the JSON; speedup:
+# the 1-rank wall over this row's; factor_mb_per_rank: MUMPS's
+# factorization memory on the largest rank; peak_mb_per_rank: the largest
+# rank's peak resident memory).
+#   sh tests/bench/bench_mpi.sh [quick|full] [N]   (quick: h_c 0.025 and 0.0125;
+#   full: also h_c 0.008, about 150k dofs)
+cd "$(dirname "$0")/../.." || exit 2
+mode=${1:-quick}; np=${2:-2}
+mkdir -p results/bench
+export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
+out=results/bench-mpi.csv
+echo "case,options,ranks,dofs,contact_dofs,wall_s,solve_s,speedup,newton,factor_mb_per_rank,peak_mb_per_rank,F" > "$out"
+num() { sed -n "s/^ *\"$2\": *\([-0-9.eE+]*\),*$/\1/p" "$1" | head -1; }
+pair() {   # pair <case> <options...>
+    case=$1; shift
+    w1=
+    for r in 1 "$np"; do
+        j=results/bench/mpi-$case-$(echo "$*" | tr -c 'a-z0-9.\n' '_')-$r
+        sh scripts/ff -np "$r" "scripts/$case.edp" "$@" -vtk 0 -out "$j" > "$j.log" 2>&1 \
+            || { echo "bench-mpi: $case $* on $r ranks failed (see $j.log)"; return 1; }
+        f=$j.json; w=$(num "$f" time_total); [ -z "$w1" ] && w1=$w
+        echo "$case,$*,$r,$(num "$f" dofs),$(num "$f" contact_dofs),$w,$(num "$f" time_solve),$(echo "$w1 $w" | awk '{printf "%.2f", $1 / $2}'),$(num "$f" newton_iterations),$(num "$f" factor_mb_per_rank),$(num "$f" peak_mb_per_rank),$(num "$f" F)" | tee -a "$out"
+    done
+}
+pair hertz -hc 0.025
+pair hertz -hc 0.0125
+[ "$mode" = full ] && pair hertz -hc 0.008
+exit 0

@@ -1,0 +1,54 @@
+#!/bin/sh
+# same_answers.sh: case studies on one process and on N ranks of
+# FreeFem++-mpi (sh scripts/ff -np N) give the same answers, to 1e-8
+# relative (the runs differ only in the bulk factorization: CHOLMOD or
+# parallel MUMPS, both backward stable, and every Newton loop stops at a
+# residual of 1e-10 or below of its force scale).
+#   sh tests/mpi/same_answers.sh [N] [quick|full]
+# quick: the coarse Hertz (augmented Lagrangian, node-to-surface, mortar)
+# and the patch test; full: also the sliding block and Cattaneo-Mindlin.
+cd "$(dirname "$0")/../.." || exit 2
+np=${1:-2}
+mode=${2:-quick}
+dir=build/mpi-answers
+mkdir -p "$dir"
+fail=0
+# the value of "key" in a case's JSON
+val() { sed -n "s/^ *\"$2\": \([-0-9.eE+]*\),*\$/\1/p" "$1" | head -1; }
+check() {   # check <name> <case> "<fields>" <options...>
+    name=$1; case=$2; fields=$3; shift 3
+    sh scripts/ff "scripts/$case.edp" "$@" -out "$dir/$name-1" > "$dir/$name-1.log" 2>&1 \
+        || { echo "FAIL $name: one process (exit $?)"; tail -5 "$dir/$name-1.log"; fail=1; return; }
+    sh scripts/ff -np "$np" "scripts/$case.edp" "$@" -out "$dir/$name-$np" > "$dir/$name-$np.log" 2>&1 \
+        || { echo "FAIL $name: $np ranks (exit $?)"; tail -5 "$dir/$name-$np.log"; fail=1; return; }
+    r=$(val "$dir/$name-$np.json" ranks)
+    [ "$r" = "$np" ] || { echo "FAIL $name: the JSON of $np ranks says ranks = $r"; fail=1; }
+    for f in $fields; do
+        a=$(val "$dir/$name-1.json" "$f"); b=$(val "$dir/$name-$np.json" "$f")
+        if [ -z "$a" ] || [ -z "$b" ]; then echo "FAIL $name: no field $f"; fail=1; continue; fi
+        awk -v a="$a" -v b="$b" 'function abs(x) { return x < 0 ? -x : x }
+            BEGIN { m = abs(a) > abs(b) ? abs(a) : abs(b); exit !(abs(a - b) <= 1e-8 * m) }' \
+            || { echo "FAIL $name: $f = $a (1 process), $b ($np ranks)"; fail=1; }
+    done
+}
+H="F F_contact a a_fit p_max p0_fit max_penetration"
+check hertz-al hertz "$H" -hc 0.1 -vtk 0
+# (node-to-surface: no penetration to compare, it is zero to round-off;
+# the fitted a and p0 take the nodes of positive pressure, and the last
+# node at the rim carries 1e-12 or 0 by round-off)
+check hertz-nts hertz "F F_contact a p_max" -hc 0.1 -vtk 0 -method nts
+check hertz-mortar hertz "$H" -hc 0.1 -vtk 0 -method mortar
+# the full-system path: K + Kc factorized at each Newton iteration
+# (UMFPACK on one process, parallel MUMPS on N ranks), and finite
+# deformation (the same path, the bulk tangent changing)
+check hertz-full hertz "$H" -hc 0.1 -vtk 0 -solver UMFPACK
+check hertz-finite hertz "$H" -hc 0.1 -vtk 0 -finite 1
+check patch patch "contact_force contact_area err_p max_penetration"
+# (mortar passes the patch test: err_p and the penetration are round-off)
+check patch-mortar patch "contact_force contact_area" -method mortar -h1 0.25 -h2 0.125
+if [ "$mode" = full ]; then
+    check sliding-block sliding-block "N T_plateau T_reverse work work_steady"
+    check cattaneo cattaneo-mindlin "P level0_c level1_c level2_c level0_c_area level1_c_area level2_c_area level2_q_ratio_reached"
+fi
+[ "$fail" -eq 0 ] && echo "same answers on 1 and $np ranks ($mode)"
+exit $fail

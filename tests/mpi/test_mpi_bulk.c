@@ -1,0 +1,165 @@
+/* test_mpi_bulk.c: a scene's bulk factorized by parallel MUMPS over the
+ * ranks of MPI_COMM_WORLD (run by mpiexec, 2 ranks in make test): the
+ * same solutions as CHOLMOD's in one process (block solves of many
+ * contact dofs included), every rank with the same bits, a singular K
+ * refused on every rank, the engine's bad input. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <mpi.h>
+
+#include "ffc_test.h"
+
+#define NV 300
+#define N (3 * NV)
+#define NC 90 /* contact dofs: three blocks of the block back-solve */
+
+static ffc_scene *scene(ffc_engine eng)
+{
+    static double X[3 * NV];
+    for (int i = 0; i < 3 * NV; i++) X[i] = 0.01 * i;
+    ffc_effects fx = {0, 0, 0};
+    ffc_scene *s = NULL;
+    assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_OK);
+    int fc;
+    ffc_mpi_world(NULL, NULL, &fc);
+    const ffc_parallel p = {eng, fc};
+    assert_int_equal(ffc_scene_set_parallel(s, &p), FFC_OK);
+    return s;
+}
+
+/* K (both triangles): springs between dof i and i + 1 and i + 3 (a 3D
+ * chain), the first ndir dofs on Dirichlet rows (diagonal 1e30) */
+static long bulk(int ndir, long Ti[], long Tj[], double Tv[])
+{
+    long t = 0;
+    for (int i = 0; i < N; i++)
+        for (int o = 1; o <= 3; o += 2) {
+            if (i + o >= N) continue;
+            const double k = 50.0 * (1.0 + 0.01 * i + 0.3 * o);
+            const int p[4][2] = {{i, i}, {i + o, i + o}, {i, i + o}, {i + o, i}};
+            const double v[4] = {k, k, -k, -k};
+            for (int e = 0; e < 4; e++) { Ti[t] = p[e][0]; Tj[t] = p[e][1]; Tv[t] = v[e]; t++; }
+        }
+    for (int i = 0; i < ndir; i++) { Ti[t] = i; Tj[t] = i; Tv[t] = 1e30; t++; }
+    return t;
+}
+
+/* a non-symmetric, diagonally dominant contact tangent on NC dofs */
+static long contact(long Ti[], long Tj[], double Tv[], int c[NC])
+{
+    uint64_t seed = 11;
+    for (int a = 0; a < NC; a++) c[a] = N / 3 + 6 * a;
+    long t = 0;
+    for (int a = 0; a < NC; a++)
+        for (int b = a - 2; b <= a + 2; b++) {
+            if (b < 0 || b >= NC) continue;
+            Ti[t] = c[a]; Tj[t] = c[b];
+            Tv[t] = 200.0 * (a == b ? 3.0 : test_rand(&seed, -0.5, 0.5));
+            t++;
+        }
+    return t;
+}
+
+static long Ti[16 * N], Tj[16 * N], Ci[5 * NC], Cj[5 * NC];
+static double Tv[16 * N], Cv[5 * NC], b[N], x1[N], x2[N];
+
+static void solve(ffc_engine eng, int ndir, int with_contact, double x[N], int *st)
+{
+    ffc_scene *s = scene(eng);
+    long bad = -1;
+    const long nt = bulk(ndir, Ti, Tj, Tv);
+    int c[NC];
+    const long nc = with_contact ? contact(Ci, Cj, Cv, c) : 0;
+    uint64_t seed = 5;
+    for (int i = 0; i < N; i++) b[i] = i < ndir ? 0.0 : test_rand(&seed, -1.0, 1.0);
+    assert_int_equal(ffc_scene_set_bulk(s, N, nt, Ti, Tj, Tv, 1000, &bad), FFC_OK);
+    *st = ffc_scene_solve(s, nc, Ci, Cj, Cv, b, x, &bad);
+    ffc_solve_info in;
+    assert_int_equal(ffc_scene_solve_info(s, &in), FFC_OK);
+    int ranks;
+    ffc_mpi_world(NULL, &ranks, NULL);
+    if (*st == FFC_OK) {
+        assert_int_equal(in.ranks, eng == FFC_ENGINE_MUMPS ? ranks : 1);
+        if (eng == FFC_ENGINE_MUMPS) assert_true(in.factor_mb_max > 0);
+        if (with_contact) assert_int_equal(in.m, NC);
+    }
+    ffc_scene_free(s);
+}
+
+/* the largest difference between this rank's x and rank 0's (0 when every
+ * rank holds the same bits) */
+static double rank_spread(const double x[N])
+{
+    static double x0[N];
+    memcpy(x0, x, sizeof x0);
+    MPI_Bcast(x0, N, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    double d = 0.0;
+    for (int i = 0; i < N; i++) d = fmax(d, fabs(x[i] - x0[i]));
+    assert_int_equal(ffc_mpi_allreduce(&d, 1, 1), FFC_OK);
+    return d;
+}
+
+/* MUMPS's solution against CHOLMOD's, with and without contact dofs; the
+ * tolerance: both are backward stable with iterative refinement to 1e-13
+ * of the residual scale, and K's condition here is below 1e4 */
+static void test_same_as_cholmod(void **state)
+{
+    (void)state;
+    for (int wc = 0; wc < 2; wc++) {
+        int st1, st2;
+        solve(FFC_ENGINE_CHOLMOD, 3, wc, x1, &st1);
+        solve(FFC_ENGINE_MUMPS, 3, wc, x2, &st2);
+        assert_int_equal(st1, FFC_OK);
+        assert_int_equal(st2, FFC_OK);
+        double d = 0.0, xm = 0.0;
+        for (int i = 0; i < N; i++) { d = fmax(d, fabs(x1[i] - x2[i])); xm = fmax(xm, fabs(x1[i])); }
+        assert_true(xm > 1e-3);
+        assert_close(d / xm, 0.0, 1e-10);
+        assert_close(rank_spread(x2), 0.0, 0.0);
+    }
+}
+
+/* a free chain (no Dirichlet row): K is singular, and no contact tangent
+ * to shift it: refused, on every rank */
+static void test_singular(void **state)
+{
+    (void)state;
+    int st;
+    solve(FFC_ENGINE_MUMPS, 0, 0, x2, &st);
+    assert_int_equal(st, FFC_ERR_SINGULAR);
+}
+
+static void test_bad_engine(void **state)
+{
+    (void)state;
+    ffc_scene *s = scene(FFC_ENGINE_CHOLMOD);
+    const ffc_parallel p = {(ffc_engine)7, 0};
+    assert_int_equal(ffc_scene_set_parallel(s, &p), FFC_ERR_VALUE);
+    assert_int_equal(ffc_scene_set_parallel(s, NULL), FFC_ERR_NULL);
+    assert_int_equal(ffc_has_mpi(), 1);
+    double v = 1.0;
+    assert_int_equal(ffc_mpi_allreduce(&v, 1, 3), FFC_ERR_VALUE);
+    int ranks;
+    ffc_mpi_world(NULL, &ranks, NULL);
+    assert_int_equal(ffc_mpi_allreduce(&v, 1, 0), FFC_OK);
+    assert_close(v, ranks, 0.0);
+    ffc_scene_free(s);
+}
+
+int main(int argc, char **argv)
+{
+    MPI_Init(&argc, &argv);
+    int rank;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank > 0 && !freopen("/dev/null", "w", stdout)) return 1; /* one report */
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_same_as_cholmod),
+        cmocka_unit_test(test_singular),
+        cmocka_unit_test(test_bad_engine),
+    };
+    const int failed = cmocka_run_group_tests(tests, NULL, NULL);
+    MPI_Finalize();
+    return failed;
+}
