@@ -857,6 +857,9 @@ typedef struct {
     ffc_engine engine;   /* the engine */
     int comm;            /* FFC_ENGINE_MUMPS: the communicator as a Fortran handle
                             (MPI_Comm_c2f(MPI_COMM_WORLD)) */
+    int own;             /* ffc_parallel_solve: 0, every rank passes the same entries (each hands
+                            MUMPS its share); 1, each rank passes its own (A is their sum: a
+                            matrix assembled on each rank's part of the mesh) */
 } ffc_parallel;
 /* Sets the engine of the next ffc_scene_set_bulk.  FFC_ERR_VALUE for an
  * unknown engine, FFC_ERR_UNAVAILABLE for MUMPS in a build without MPI
@@ -865,8 +868,9 @@ int ffc_scene_set_parallel(ffc_scene *s, const ffc_parallel *p);
 /* Solves A x = b[n] once, A a general sparse matrix (a full Newton
  * system: non-symmetric with friction, indefinite with multipliers) from
  * its triplets (Ti, Tj, Tv)[nt] (duplicates summed), by parallel MUMPS
- * over p->comm: every rank passes the same arguments and each hands MUMPS
- * its share of the entries; x on every rank.  FFC_ERR_INDEX /
+ * over p->comm: every rank passes the same b, and the same entries (each
+ * hands MUMPS its share) or, with p->own, its own entries (A is their
+ * sum); x on every rank.  FFC_ERR_INDEX /
  * FFC_ERR_NONFINITE (*bad = the triplet, or the entry of b),
  * FFC_ERR_SINGULAR (a pivot below 1e-14 of A's norm), FFC_ERR_UNAVAILABLE
  * without MPI or for p->engine = FFC_ENGINE_CHOLMOD (one process: FreeFEM's

@@ -35,8 +35,15 @@ int ffc_mpi_allreduce(double v[], long n, int op)
     if (op < 0 || op > 2) return FFC_ERR_VALUE;
     if (!running() || n == 0) return FFC_OK;
     const MPI_Op o = op == 0 ? MPI_SUM : op == 1 ? MPI_MAX : MPI_MIN;
-    return MPI_Allreduce(MPI_IN_PLACE, v, (int)n, MPI_DOUBLE, o, MPI_COMM_WORLD) == MPI_SUCCESS ? FFC_OK
-                                                                                                : FFC_ERR_UNAVAILABLE;
+    /* reduced on rank 0, then broadcast: every rank gets the same bits (an
+     * all-reduce may sum in a different order on each rank, and ranks that
+     * differ in the last bit take different branches and wait for each
+     * other in different collective calls) */
+    int rank;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    int e = MPI_Reduce(rank == 0 ? MPI_IN_PLACE : v, rank == 0 ? v : NULL, (int)n, MPI_DOUBLE, o, 0, MPI_COMM_WORLD);
+    if (e == MPI_SUCCESS) e = MPI_Bcast(v, (int)n, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    return e == MPI_SUCCESS ? FFC_OK : FFC_ERR_UNAVAILABLE;
 }
 
 int ffc_mpi_barrier(void)

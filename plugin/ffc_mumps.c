@@ -151,7 +151,7 @@ int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], 
     m.id.sym = 0;    /* general: a contact tangent with friction is not symmetric */
     call(&m, -1);
     if (m.id.INFOG(1) < 0) return FFC_ERR_MEMORY;
-    const long lo = nt * m.rank / m.ranks, nl = nt * (m.rank + 1) / m.ranks - lo;
+    const long lo = p->own ? 0 : nt * m.rank / m.ranks, nl = p->own ? nt : nt * (m.rank + 1) / m.ranks - lo;
     MUMPS_INT *ri = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
     MUMPS_INT *rj = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
     double *rv = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(double));

@@ -394,6 +394,19 @@ double rankReduce(const char *fn, double x, int op)
     return v;
 }
 double ffcRankSum(double x) { return rankReduce("ffcRankSum", x, 0); }
+// ffcRankSum(v): the array v summed over the ranks, in place (every rank
+// passes an array of the same size)
+long ffcRankSumArray(KN<double> *const &v)
+{
+    if (!v) fail("ffcRankSum", "argument 'v': array is not defined");
+    const long n = v->N();
+    std::vector<double> w(n);
+    for (long i = 0; i < n; i++) w[i] = (*v)[i];
+    const int st = ffc_mpi_allreduce(w.data(), n, 0);
+    if (st) fail("ffcRankSum", ffc_strerror(st));
+    for (long i = 0; i < n; i++) (*v)[i] = w[i];
+    return n;
+}
 double ffcRankMax(double x) { return rankReduce("ffcRankMax", x, 1); }
 long ffcBarrier() { return ffc_mpi_barrier(); }
 double ffcPeakMB() { return ffc_peak_mb(); }
@@ -753,7 +766,7 @@ FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh)
     int rank, ranks, fcomm;   // several ranks (FreeFem++-mpi): the bulk is factorized by parallel MUMPS
     ffc_mpi_world(&rank, &ranks, &fcomm);
     if (ranks > 1) {
-        const ffc_parallel par = {FFC_ENGINE_MUMPS, fcomm};
+        const ffc_parallel par = {FFC_ENGINE_MUMPS, fcomm, 0};
         st = ffc_scene_set_parallel(d->s, &par);
         if (st) scene_error(fn, st, -1, "the scene's parallel engine");
     }
@@ -1528,7 +1541,15 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
 // ffcParallelSolve(A, b, x): A x = b by parallel MUMPS over the ranks of
 // FreeFem++-mpi (every rank the same A and b; x on every rank). 0 solved,
 // 1 singular (the caller cuts the step, as for a failed UMFPACK solve).
+long parallelSolveOwn(Matrice_Creuse<double> *const &A, KN<double> *const &b, KN<double> *const &x, const long &own);
 long parallelSolve(Matrice_Creuse<double> *const &A, KN<double> *const &b, KN<double> *const &x)
+{
+    return parallelSolveOwn(A, b, x, 0);
+}
+// ffcParallelSolve(A, b, x, own): own = 1, A is this rank's share (the
+// matrix solved is the sum of the ranks' A: each assembled its part of the
+// mesh); own = 0, every rank holds the same A.
+long parallelSolveOwn(Matrice_Creuse<double> *const &A, KN<double> *const &b, KN<double> *const &x, const long &own)
 {
     const char *fn = "ffcParallelSolve";
     int ranks, fcomm;
@@ -1544,7 +1565,8 @@ long parallelSolve(Matrice_Creuse<double> *const &A, KN<double> *const &b, KN<do
     if (!x) fail(fn, "argument 'x': array is not defined");
     std::vector<double> bv(n), xv(n);
     for (long i = 0; i < n; i++) bv[i] = (*b)[i];
-    const ffc_parallel par = {FFC_ENGINE_MUMPS, fcomm};
+    if (own != 0 && own != 1) fail(fn, "argument 'own': " + std::to_string(own) + " is neither 0 nor 1");
+    const ffc_parallel par = {FFC_ENGINE_MUMPS, fcomm, (int)own};
     long bad = -1;
     const int st = ffc_parallel_solve(&par, n, (long)Ti.size(), Ti.data(), Tj.data(), Tv.data(), bv.data(), xv.data(), &bad);
     if (st == FFC_ERR_SINGULAR) return 1;
@@ -1728,6 +1750,8 @@ static void init()
     Global.Add("ffcPeakMB", "(", new OneOperator0<double>(ffcPeakMB));
     Global.Add("ffcRankSum", "(", new OneOperator1<double, double>(ffcRankSum));
     Global.Add("ffcRankMax", "(", new OneOperator1<double, double>(ffcRankMax));
+    Global.Add("ffcRankSum", "(", new OneOperator1_<long, KN<double> *>(ffcRankSumArray));
+    Global.Add("ffcParallelSolve", "(", new OneOperator4_<long, Matrice_Creuse<double> *, KN<double> *, KN<double> *, long>(parallelSolveOwn));
     Global.Add("ffcMassSpread", "(",
                new OneOperator3_<long, Matrice_Creuse<double> *, KN<double> *, Matrice_Creuse<double> *>(massSpread));
     Global.Add("ffcInverted", "(", new OneOperator2_<long, pmesh3, KN<double> *>(ffcInverted));

@@ -233,10 +233,13 @@ static void test_no_mpi(void **state)
     assert_int_equal(r, 0);
     assert_int_equal(n, 1);
     assert_int_equal(ffc_has_mpi(), 0);
-    const ffc_parallel mumps = {FFC_ENGINE_MUMPS, 0}, chol = {FFC_ENGINE_CHOLMOD, 0};
+    const ffc_parallel mumps = {FFC_ENGINE_MUMPS, 0, 0}, chol = {FFC_ENGINE_CHOLMOD, 0, 0};
     assert_int_equal(ffc_scene_set_parallel(s, &mumps), FFC_ERR_UNAVAILABLE);
     assert_non_null(strstr(ffc_strerror(FFC_ERR_UNAVAILABLE), "MUMPS"));
     assert_int_equal(ffc_scene_set_parallel(s, &chol), FFC_OK);
+    long i0 = 0;
+    double v0 = 1.0, b0 = 1.0, x0 = 0.0;
+    assert_int_equal(ffc_parallel_solve(&mumps, 1, 1, &i0, &i0, &v0, &b0, &x0, NULL), FFC_ERR_UNAVAILABLE);
     double v[2] = {3.0, -1.0};
     assert_int_equal(ffc_mpi_allreduce(v, 2, 1), FFC_OK);
     assert_close(v[0], 3.0, 0.0);

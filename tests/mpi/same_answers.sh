@@ -22,6 +22,9 @@ check() {   # check <name> <case> "<fields>" <options...>
     sh scripts/ff -np "$np" "scripts/$case.edp" "$@" -out "$dir/$name-$np" > "$dir/$name-$np.log" 2>&1 \
         || { echo "FAIL $name: $np ranks (exit $?)"; tail -5 "$dir/$name-$np.log"; fail=1; return; }
     r=$(val "$dir/$name-$np.json" ranks)
+    case "$*" in *"-finite 1"*)   # finite deformation, P1: each rank assembles its part
+        grep -q '"bulk_assembly": "by rank"' "$dir/$name-$np.json" || { echo "FAIL $name: not assembled by rank"; fail=1; } ;;
+    esac
     [ "$r" = "$np" ] || { echo "FAIL $name: the JSON of $np ranks says ranks = $r"; fail=1; }
     for f in $fields; do
         a=$(val "$dir/$name-1.json" "$f"); b=$(val "$dir/$name-$np.json" "$f")

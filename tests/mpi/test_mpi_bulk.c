@@ -24,7 +24,7 @@ static ffc_scene *scene(ffc_engine eng)
     assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_OK);
     int fc;
     ffc_mpi_world(NULL, NULL, &fc);
-    const ffc_parallel p = {eng, fc};
+    const ffc_parallel p = {eng, fc, 0};
     assert_int_equal(ffc_scene_set_parallel(s, &p), FFC_OK);
     return s;
 }
@@ -131,11 +131,81 @@ static void test_singular(void **state)
     assert_int_equal(st, FFC_ERR_SINGULAR);
 }
 
+/* a general (non-symmetric) sparse system solved once, the entries the
+ * same on every rank or each rank's own share (their sum is A), against a
+ * dense Gaussian elimination with partial pivoting; a singular one */
+#define NG 60
+static void test_general_solve(void **state)
+{
+    (void)state;
+    int rank, ranks, fc;
+    ffc_mpi_world(&rank, &ranks, &fc);
+    static long gi[6 * NG], gj[6 * NG];
+    static double gv[6 * NG], A[NG * NG], bb[NG], xr[NG], xs[NG], xo[NG];
+    uint64_t seed = 3;
+    long nt = 0;
+    memset(A, 0, sizeof A);
+    for (int i = 0; i < NG; i++) {
+        const int cols[3] = {i, (i + 1) % NG, (i + 7) % NG};
+        for (int c = 0; c < 3; c++) {
+            const double v = c == 0 ? 4.0 + test_rand(&seed, 0, 1) : test_rand(&seed, -1, 1);
+            /* each entry in two halves: the own mode sums them over the ranks */
+            for (int h = 0; h < 2; h++) { gi[nt] = i; gj[nt] = cols[c]; gv[nt] = 0.5 * v; nt++; }
+            A[i * NG + cols[c]] += v;
+        }
+        bb[i] = test_rand(&seed, -1, 1);
+    }
+    /* reference: Gaussian elimination with partial pivoting on a copy */
+    static double M[NG * NG];
+    memcpy(M, A, sizeof M);
+    memcpy(xr, bb, sizeof xr);
+    for (int k = 0; k < NG; k++) {
+        int p = k;
+        for (int i = k + 1; i < NG; i++) if (fabs(M[i * NG + k]) > fabs(M[p * NG + k])) p = i;
+        for (int j = 0; j < NG; j++) { const double t = M[k * NG + j]; M[k * NG + j] = M[p * NG + j]; M[p * NG + j] = t; }
+        const double t = xr[k]; xr[k] = xr[p]; xr[p] = t;
+        for (int i = k + 1; i < NG; i++) {
+            const double f = M[i * NG + k] / M[k * NG + k];
+            for (int j = k; j < NG; j++) M[i * NG + j] -= f * M[k * NG + j];
+            xr[i] -= f * xr[k];
+        }
+    }
+    for (int k = NG - 1; k >= 0; k--) {
+        for (int j = k + 1; j < NG; j++) xr[k] -= M[k * NG + j] * xr[j];
+        xr[k] /= M[k * NG + k];
+    }
+    long bad = -1;
+    const ffc_parallel shared = {FFC_ENGINE_MUMPS, fc, 0}, own = {FFC_ENGINE_MUMPS, fc, 1};
+    assert_int_equal(ffc_parallel_solve(&shared, NG, nt, gi, gj, gv, bb, xs, &bad), FFC_OK);
+    /* own: the ranks split the entries (rank r the r-th share of the list) */
+    const long lo = nt * rank / ranks, hi = nt * (rank + 1) / ranks;
+    assert_int_equal(ffc_parallel_solve(&own, NG, hi - lo, gi + lo, gj + lo, gv + lo, bb, xo, &bad), FFC_OK);
+    for (int i = 0; i < NG; i++) {   /* A diagonally dominant: condition below 10 */
+        assert_close(xs[i], xr[i], 1e-12);
+        assert_close(xo[i], xr[i], 1e-12);
+    }
+    double spread = 0.0, x0[NG];
+    memcpy(x0, xo, sizeof x0);
+    MPI_Bcast(x0, NG, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    for (int i = 0; i < NG; i++) spread = fmax(spread, fabs(xo[i] - x0[i]));
+    assert_int_equal(ffc_mpi_allreduce(&spread, 1, 1), FFC_OK);
+    assert_close(spread, 0.0, 0.0);
+    /* a zero row: singular, on every rank */
+    for (long t = 0; t < nt; t++) if (gi[t] == 5) gv[t] = 0.0;
+    assert_int_equal(ffc_parallel_solve(&shared, NG, nt, gi, gj, gv, bb, xs, &bad), FFC_ERR_SINGULAR);
+    /* bad input, before any collective call */
+    gi[3] = NG;
+    assert_int_equal(ffc_parallel_solve(&shared, NG, nt, gi, gj, gv, bb, xs, &bad), FFC_ERR_INDEX);
+    assert_int_equal(bad, 3);
+    const ffc_parallel chol = {FFC_ENGINE_CHOLMOD, 0, 0};
+    assert_int_equal(ffc_parallel_solve(&chol, NG, nt, gi, gj, gv, bb, xs, &bad), FFC_ERR_UNAVAILABLE);
+}
+
 static void test_bad_engine(void **state)
 {
     (void)state;
     ffc_scene *s = scene(FFC_ENGINE_CHOLMOD);
-    const ffc_parallel p = {(ffc_engine)7, 0};
+    const ffc_parallel p = {(ffc_engine)7, 0, 0};
     assert_int_equal(ffc_scene_set_parallel(s, &p), FFC_ERR_VALUE);
     assert_int_equal(ffc_scene_set_parallel(s, NULL), FFC_ERR_NULL);
     assert_int_equal(ffc_has_mpi(), 1);
@@ -157,6 +227,7 @@ int main(int argc, char **argv)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_same_as_cholmod),
         cmocka_unit_test(test_singular),
+        cmocka_unit_test(test_general_solve),
         cmocka_unit_test(test_bad_engine),
     };
     const int failed = cmocka_run_group_tests(tests, NULL, NULL);
