@@ -53,10 +53,10 @@ $(MB)/libffc.a: $(MOBJ)
 	@rm -f $@
 	ar rcs $@ $^
 $(MB)/ffcontact.so: plugin/ffcontact.cpp $(MB)/libffc.a include/ffc.h
-	$(MPICXX) $(FFFLAGS) -DFFC_MPI $< $(MB)/libffc.a -ldmumps $(CLIBS) -o $@
+	$(MPICXX) $(FFFLAGS) -DFFC_MPI $< $(MB)/libffc.a -ldmumps -lscalapack-openmpi $(CLIBS) -o $@
 $(MB)/tests/%: tests/mpi/%.c tests/c/ffc_test.h $(MB)/libffc.a
 	@mkdir -p $(dir $@)
-	$(MPICC) $(CFLAGS) -DFFC_MPI -Itests/c $< $(MB)/libffc.a -lcmocka -ldmumps $(CLIBS) -o $@
+	$(MPICC) $(CFLAGS) -DFFC_MPI -Itests/c -Iplugin $< $(MB)/libffc.a -lcmocka -ldmumps -lscalapack-openmpi $(CLIBS) -o $@
 MPITESTS := $(patsubst tests/mpi/%.c,$(MB)/tests/%,$(wildcard tests/mpi/test_*.c))
 mpitest: $(MPITESTS)
 

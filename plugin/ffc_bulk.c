@@ -12,8 +12,11 @@
 #include "ffc_bulk.h"
 #include "ffc_internal.h"
 #include "ffc_mumps.h"
+#include "ffc_pdense.h"
 
 enum { BLOCK = 32 };   /* compliance columns per block back-solve */
+enum { PDENSE_MIN = 200 }; /* on several ranks, the condensed Newton's dense LU of this order and more is
+                              shared over them (ScaLAPACK); a smaller one is factorized on every rank */
 
 struct ffc__bulk {
     long n;                    /* dofs */
@@ -32,6 +35,8 @@ struct ffc__bulk {
     ffc__mumps *mp;            /* parallel MUMPS in place of CHOLMOD's factor (NULL: CHOLMOD); B and Bb
                                   are then its right-hand sides, solved in place */
     int factored;              /* 1: a factor (L, or MUMPS's) is held */
+    ffc__pdense *pd;           /* with MUMPS: the dense LU shared over the same ranks (NULL: none) */
+    int kdist;                 /* 1: the kept LU (ka, kdof) is pd's, not klu */
     long m, ld;                /* contact dofs, leading dimension of G */
     long *dof;                 /* [ld] contact dofs */
     double *G;                 /* [ld*ld] compliance (column-major) */
@@ -86,6 +91,7 @@ void ffc__bulk_free(ffc__bulk *b)
     bulk_free_factor(b);
     if (b->started) cholmod_finish(&b->cc);
     ffc__mumps_free(b->mp);
+    ffc__pdense_free(b->pd);
     free(b->Ti); free(b->Tj); free(b->Tv); free(b->diag); free(b->big); free(b->sh);
     free(b->dof); free(b->G); free(b->pos); free(b->nd); free(b->A); free(b->piv);
     free(b->xc); free(b->w); free(b->r); free(b->dx); free(b->t); free(b->kv);
@@ -201,6 +207,11 @@ int ffc__bulk_set_mumps(ffc__bulk *b, int fcomm)
     bulk_free_factor(b);
     ffc__mumps_free(b->mp);
     b->mp = m;
+    ffc__pdense_free(b->pd);
+    b->pd = NULL;
+    b->kdist = 0;
+    b->ka = 0;
+    if (ffc__pdense_create(fcomm, &b->pd)) b->pd = NULL;   /* (without it, dense LUs on every rank) */
     return FFC_OK;
 }
 
@@ -736,6 +747,17 @@ enum { KRYLOV = 20 };   /* GMRES: basis vectors per cycle */
  * own accuracy: a looser one costs Newton iterations on a penalty-stiff
  * system).  Returns the iterations, or -1 when it does not get there in
  * two cycles (t is then unchanged: the caller factorizes afresh). */
+/* w[a] overwritten by the kept LU's solution (shared over the ranks when
+ * it is pd's); nonzero on failure */
+static int kept_solve(ffc__bulk *b, long a, double w[])
+{
+    if (b->kdist) return ffc__pdense_solve(b->pd, a, w);
+    const int ai = (int)a, one = 1;
+    int info = 0;
+    dgetrs_("N", &ai, &one, b->klu, &ai, b->kpiv, w, &ai, &info);
+    return info;
+}
+
 static int gmres_kept(ffc__bulk *b, long a, const double M[], const double Gaa[], double t[])
 {
     const long k1 = KRYLOV + 1, need = a * (k1 + 4) + k1 * KRYLOV + 3 * k1;
@@ -749,7 +771,7 @@ static int gmres_kept(ffc__bulk *b, long a, const double M[], const double Gaa[]
            *sn = cs + k1, *g = sn + k1;
     const int ai = (int)a, one = 1;
     const double d1 = 1.0, d0 = 0.0;
-    int info = 0, iters = 0;
+    int iters = 0;
     double bn = 0.0;
     for (long r = 0; r < a; r++) { rb[r] = t[r]; x[r] = 0.0; bn += t[r] * t[r]; }
     bn = sqrt(bn);
@@ -778,8 +800,7 @@ static int gmres_kept(ffc__bulk *b, long a, const double M[], const double Gaa[]
         for (; j < KRYLOV; j++) {
             /* w = A P^-1 V[:, j] */
             memcpy(w, V + j * a, (size_t)a * sizeof(double));
-            dgetrs_("N", &ai, &one, b->klu, &ai, b->kpiv, w, &ai, &info);
-            if (info) return -1;
+            if (kept_solve(b, a, w)) return -1;
             double *vj1 = V + (j + 1) * a;
             AMUL(w, vj1);
             iters++;
@@ -815,8 +836,7 @@ static int gmres_kept(ffc__bulk *b, long a, const double M[], const double Gaa[]
         for (long r = 0; r < a; r++) w[r] = 0.0;
         for (long i = 0; i < j; i++)
             for (long r = 0; r < a; r++) w[r] += g[i] * V[i * a + r];
-        dgetrs_("N", &ai, &one, b->klu, &ai, b->kpiv, w, &ai, &info);
-        if (info) return -1;
+        if (kept_solve(b, a, w)) return -1;
         for (long r = 0; r < a; r++) x[r] += w[r];
     }
     /* the true residual after the last cycle */
@@ -893,8 +913,15 @@ static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], dou
         /* else A = I + G_aa M, column by column over M's nonzeros (a few
          * dozen per column: a^2 x that, against 2 a^3 for a dense product) */
         double *A = b->A;
-        for (long j = 0; j < a && git < 0; j++) {
-            double *aj = A + j * a;
+        /* (several ranks and a large support: each rank builds the columns
+         * it holds and the LU is shared, ffc__pdense) */
+        const int dist = git < 0 && b->pd && a >= PDENSE_MIN;
+        double *Al = dist ? ffc__pdense_reserve(b->pd, a) : NULL;
+        if (dist && !Al) st = FFC_ERR_MEMORY;
+        for (long j = 0; j < a && git < 0 && !st; j++) {
+            long jl = 0;
+            if (dist && (jl = ffc__pdense_local(b->pd, j)) < 0) continue;
+            double *aj = dist ? Al + jl * a : A + j * a;
             for (long r = 0; r < a; r++) aj[r] = 0.0;
             aj[j] = 1.0;
             const double *mj = M + j * a;
@@ -905,8 +932,12 @@ static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], dou
                 for (long r = 0; r < a; r++) aj[r] += v * gi[r];
             }
         }
-        if (git < 0) {
-            st = ffc__lu_solve(a, A, b->piv, t);
+        if (git < 0 && !st) {
+            if (dist) {
+                st = ffc__pdense_factor(b->pd, a);
+                if (!st) st = ffc__pdense_solve(b->pd, a, t);
+            } else
+                st = ffc__lu_solve(a, A, b->piv, t);
             if (!st && a > b->kcap) { /* keep the LU */
                 long *kd = realloc(b->kdof, (size_t)a * sizeof(long));
                 if (kd) b->kdof = kd;
@@ -917,10 +948,13 @@ static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], dou
             }
             b->ka = 0;
             if (!st && a <= b->kcap) {
-                memcpy(b->klu, A, (size_t)(a * a) * sizeof(double));
-                memcpy(b->kpiv, b->piv, (size_t)a * sizeof(int));
+                if (!dist) {
+                    memcpy(b->klu, A, (size_t)(a * a) * sizeof(double));
+                    memcpy(b->kpiv, b->piv, (size_t)a * sizeof(int));
+                }
                 for (long r = 0; r < a; r++) b->kdof[r] = b->dof[ad[r]];
                 b->ka = a;
+                b->kdist = dist;
             }
         }
         if (!st) dgemv_("N", &ai, &ai, &d1, M, &ai, t, &one, &d0, s, &one); /* s = M t */

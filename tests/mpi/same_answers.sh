@@ -41,6 +41,9 @@ check hertz-al hertz "$H" -hc 0.1 -vtk 0
 # node at the rim carries 1e-12 or 0 by round-off)
 check hertz-nts hertz "F F_contact a p_max" -hc 0.1 -vtk 0 -method nts
 check hertz-mortar hertz "$H" -hc 0.1 -vtk 0 -method mortar
+# (a support of 384 contact dofs: the condensed Newton's dense LU shared
+# over the ranks, ScaLAPACK)
+check hertz-025 hertz "$H" -hc 0.025 -vtk 0
 # the full-system path: K + Kc factorized at each Newton iteration
 # (UMFPACK on one process, parallel MUMPS on N ranks), and finite
 # deformation (the same path, the bulk tangent changing)

@@ -10,6 +10,7 @@
 #include <mpi.h>
 
 #include "ffc_test.h"
+#include "ffc_pdense.h"   /* (internal: the shared dense LU) */
 
 #define NV 300
 #define N (3 * NV)
@@ -201,6 +202,73 @@ static void test_general_solve(void **state)
     assert_int_equal(ffc_parallel_solve(&chol, NG, nt, gi, gj, gv, bb, xs, &bad), FFC_ERR_UNAVAILABLE);
 }
 
+/* the dense LU shared over the ranks (the condensed Newton's, ScaLAPACK)
+ * against a dense elimination of the whole matrix on every rank: 1e-12
+ * (diagonally dominant, condition below 10); a singular one refused */
+#define ND 300
+static void test_shared_lu(void **state)
+{
+    (void)state;
+    int fc;
+    ffc_mpi_world(NULL, NULL, &fc);
+    ffc__pdense *d = NULL;
+    assert_int_equal(ffc__pdense_create(fc, &d), FFC_OK);
+    static double A[ND * ND], M[ND * ND], t[ND], x[ND];
+    uint64_t seed = 9;
+    for (int j = 0; j < ND; j++)
+        for (int i = 0; i < ND; i++) A[i + j * ND] = (i == j ? 5.0 : 0.0) + test_rand(&seed, -1, 1) / ND * 3;
+    for (int i = 0; i < ND; i++) t[i] = x[i] = test_rand(&seed, -1, 1);
+    for (int pass = 0; pass < 2; pass++) {   /* (twice: the storage reused) */
+        double *Al = ffc__pdense_reserve(d, ND);
+        assert_non_null(Al);
+        for (int j = 0; j < ND; j++) {
+            const long jl = ffc__pdense_local(d, j);
+            if (jl >= 0) memcpy(Al + jl * ND, A + j * ND, ND * sizeof(double));
+        }
+        assert_int_equal(ffc__pdense_factor(d, ND), FFC_OK);
+        memcpy(t, x, sizeof t);
+        assert_int_equal(ffc__pdense_solve(d, ND, t), FFC_OK);
+    }
+    /* reference: Gaussian elimination with partial pivoting */
+    memcpy(M, A, sizeof M);
+    double y[ND];
+    memcpy(y, x, sizeof y);
+    for (int k = 0; k < ND; k++) {
+        int p = k;
+        for (int i = k + 1; i < ND; i++) if (fabs(M[i + k * ND]) > fabs(M[p + k * ND])) p = i;
+        for (int j = 0; j < ND; j++) { const double s = M[k + j * ND]; M[k + j * ND] = M[p + j * ND]; M[p + j * ND] = s; }
+        const double s = y[k]; y[k] = y[p]; y[p] = s;
+        for (int i = k + 1; i < ND; i++) {
+            const double f = M[i + k * ND] / M[k + k * ND];
+            for (int j = k; j < ND; j++) M[i + j * ND] -= f * M[k + j * ND];
+            y[i] -= f * y[k];
+        }
+    }
+    for (int k = ND - 1; k >= 0; k--) {
+        for (int j = k + 1; j < ND; j++) y[k] -= M[k + j * ND] * y[j];
+        y[k] /= M[k + k * ND];
+    }
+    double spread = 0.0, t0[ND];
+    memcpy(t0, t, sizeof t0);
+    MPI_Bcast(t0, ND, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    for (int i = 0; i < ND; i++) {
+        assert_close(t[i], y[i], 1e-12);
+        spread = fmax(spread, fabs(t[i] - t0[i]));
+    }
+    assert_int_equal(ffc_mpi_allreduce(&spread, 1, 1), FFC_OK);
+    assert_close(spread, 0.0, 0.0);
+    /* two equal columns: singular, refused on every rank */
+    double *Al = ffc__pdense_reserve(d, ND);
+    assert_non_null(Al);
+    for (int j = 0; j < ND; j++) {
+        const long jl = ffc__pdense_local(d, j);
+        if (jl >= 0) memcpy(Al + jl * ND, A + (j == ND - 1 ? 0 : j) * ND, ND * sizeof(double));
+    }
+    assert_int_equal(ffc__pdense_factor(d, ND), FFC_ERR_SINGULAR);
+    assert_int_equal(ffc__pdense_solve(d, ND, t), FFC_ERR_EMPTY);
+    ffc__pdense_free(d);
+}
+
 static void test_bad_engine(void **state)
 {
     (void)state;
@@ -228,6 +296,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_same_as_cholmod),
         cmocka_unit_test(test_singular),
         cmocka_unit_test(test_general_solve),
+        cmocka_unit_test(test_shared_lu),
         cmocka_unit_test(test_bad_engine),
     };
     const int failed = cmocka_run_group_tests(tests, NULL, NULL);
