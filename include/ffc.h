@@ -872,7 +872,8 @@ int ffc_scene_set_parallel(ffc_scene *s, const ffc_parallel *p);
  * hands MUMPS its share) or, with p->own, its own entries (A is their
  * sum); x on every rank.  FFC_ERR_INDEX /
  * FFC_ERR_NONFINITE (*bad = the triplet, or the entry of b),
- * FFC_ERR_SINGULAR (a pivot below 1e-14 of A's norm), FFC_ERR_UNAVAILABLE
+ * FFC_ERR_SINGULAR (an exactly zero pivot; as with UMFPACK, a tiny one
+ * gives a huge solution: the caller checks the residual), FFC_ERR_UNAVAILABLE
  * without MPI or for p->engine = FFC_ENGINE_CHOLMOD (one process: FreeFEM's
  * UMFPACK). */
 int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], const long Tj[], const double Tv[],

@@ -167,8 +167,11 @@ int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], 
         DMUMPS_STRUC_C *id = &m.id;
         id->ICNTL(1) = -1; id->ICNTL(2) = -1; id->ICNTL(3) = -1; id->ICNTL(4) = 0;
         id->ICNTL(18) = 3;
-        id->ICNTL(24) = 1;
-        id->CNTL(3) = 1e-14;
+        /* no null-pivot detection: like UMFPACK, a tiny pivot (a body that
+         * only contact will hold) gives a huge solution along its rigid
+         * motion, which the scene library's free-body step shortens; an
+         * exactly zero pivot is refused (INFOG(1) = -10) */
+        id->ICNTL(24) = 0;
         id->n = (MUMPS_INT)n;
         id->nnz_loc = nl;
         id->nz_loc = (MUMPS_INT)nl;
@@ -179,7 +182,7 @@ int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], 
         id->lrhs = (MUMPS_INT)n;
         call(&m, 6);  /* analysis, factorization and solve */
         const int e = id->INFOG(1);
-        if (e == -10 || (e >= 0 && id->INFOG(28) > 0)) st = FFC_ERR_SINGULAR;
+        if (e == -10) st = FFC_ERR_SINGULAR;
         else if (e < 0) st = FFC_ERR_MEMORY;
         else MPI_Bcast(x, (int)n, MPI_DOUBLE, 0, m.comm);
     }

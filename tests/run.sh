@@ -117,6 +117,21 @@ for t in tests/edp/err_*.edp; do
         fail=$((fail + 1)); report "$t (exit $rc, expected a clean error with: $want)"
     fi
 done
+# every FreeFEM test again on 2 ranks (sh scripts/ff -np 2): the same
+# verdicts, and no rank left waiting in a collective call (timeout)
+for t in tests/edp/test_*.edp tests/edp/err_*.edp; do
+    [ -f "$t" ] || continue
+    case "np2 $t" in *"$pat"*) ;; *) continue ;; esac
+    [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+    timeout 300 sh scripts/ff -np 2 "$t" >"$log" 2>&1
+    rc=$?
+    case "$t" in
+        */err_*) want=$(sed -n '1s|^// expect: ||p' "$t")
+                 if [ -n "$want" ] && [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] && grep -qF -- "$want" "$log"; then ok=1; else ok=0; fi ;;
+        *) if [ "$rc" -eq 0 ]; then ok=1; else ok=0; fi ;;
+    esac
+    if [ "$ok" -eq 1 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); report "$t on 2 ranks (exit $rc)"; fi
+done
 rm -f "$log"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
