@@ -89,15 +89,17 @@ static void solve(ffc_engine eng, int ndir, int with_contact, double x[N], int *
     ffc_scene_free(s);
 }
 
-/* the largest difference between this rank's x and rank 0's (0 when every
- * rank holds the same bits) */
-static double rank_spread(const double x[N])
+/* the largest difference between this rank's x[n] and rank 0's (0 when
+ * every rank holds the same bits) */
+static double rank_spread(int n, const double x[])
 {
-    static double x0[N];
-    memcpy(x0, x, sizeof x0);
-    MPI_Bcast(x0, N, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    double *x0 = malloc(sizeof(double) * n);
+    assert_non_null(x0);
+    memcpy(x0, x, sizeof(double) * n);
+    MPI_Bcast(x0, n, MPI_DOUBLE, 0, MPI_COMM_WORLD);
     double d = 0.0;
-    for (int i = 0; i < N; i++) d = fmax(d, fabs(x[i] - x0[i]));
+    for (int i = 0; i < n; i++) d = fmax(d, fabs(x[i] - x0[i]));
+    free(x0);
     assert_int_equal(ffc_mpi_allreduce(&d, 1, 1), FFC_OK);
     return d;
 }
@@ -118,7 +120,7 @@ static void test_same_as_cholmod(void **state)
         for (int i = 0; i < N; i++) { d = fmax(d, fabs(x1[i] - x2[i])); xm = fmax(xm, fabs(x1[i])); }
         assert_true(xm > 1e-3);
         assert_close(d / xm, 0.0, 1e-10);
-        assert_close(rank_spread(x2), 0.0, 0.0);
+        assert_close(rank_spread(N, x2), 0.0, 0.0);
     }
 }
 
@@ -156,25 +158,7 @@ static void test_general_solve(void **state)
         }
         bb[i] = test_rand(&seed, -1, 1);
     }
-    /* reference: Gaussian elimination with partial pivoting on a copy */
-    static double M[NG * NG];
-    memcpy(M, A, sizeof M);
-    memcpy(xr, bb, sizeof xr);
-    for (int k = 0; k < NG; k++) {
-        int p = k;
-        for (int i = k + 1; i < NG; i++) if (fabs(M[i * NG + k]) > fabs(M[p * NG + k])) p = i;
-        for (int j = 0; j < NG; j++) { const double t = M[k * NG + j]; M[k * NG + j] = M[p * NG + j]; M[p * NG + j] = t; }
-        const double t = xr[k]; xr[k] = xr[p]; xr[p] = t;
-        for (int i = k + 1; i < NG; i++) {
-            const double f = M[i * NG + k] / M[k * NG + k];
-            for (int j = k; j < NG; j++) M[i * NG + j] -= f * M[k * NG + j];
-            xr[i] -= f * xr[k];
-        }
-    }
-    for (int k = NG - 1; k >= 0; k--) {
-        for (int j = k + 1; j < NG; j++) xr[k] -= M[k * NG + j] * xr[j];
-        xr[k] /= M[k * NG + k];
-    }
+    test_dense_solve(NG, A, bb, xr);   /* the reference */
     long bad = -1;
     const ffc_parallel shared = {FFC_ENGINE_MUMPS, fc, 0}, own = {FFC_ENGINE_MUMPS, fc, 1};
     assert_int_equal(ffc_parallel_solve(&shared, NG, nt, gi, gj, gv, bb, xs, &bad), FFC_OK);
@@ -185,12 +169,7 @@ static void test_general_solve(void **state)
         assert_close(xs[i], xr[i], 1e-12);
         assert_close(xo[i], xr[i], 1e-12);
     }
-    double spread = 0.0, x0[NG];
-    memcpy(x0, xo, sizeof x0);
-    MPI_Bcast(x0, NG, MPI_DOUBLE, 0, MPI_COMM_WORLD);
-    for (int i = 0; i < NG; i++) spread = fmax(spread, fabs(xo[i] - x0[i]));
-    assert_int_equal(ffc_mpi_allreduce(&spread, 1, 1), FFC_OK);
-    assert_close(spread, 0.0, 0.0);
+    assert_close(rank_spread(NG, xo), 0.0, 0.0);
     /* a zero row: singular, on every rank */
     for (long t = 0; t < nt; t++) if (gi[t] == 5) gv[t] = 0.0;
     assert_int_equal(ffc_parallel_solve(&shared, NG, nt, gi, gj, gv, bb, xs, &bad), FFC_ERR_SINGULAR);
@@ -229,34 +208,13 @@ static void test_shared_lu(void **state)
         memcpy(t, x, sizeof t);
         assert_int_equal(ffc__pdense_solve(d, ND, t), FFC_OK);
     }
-    /* reference: Gaussian elimination with partial pivoting */
-    memcpy(M, A, sizeof M);
+    /* the reference (A is column-major: its row-major copy) */
     double y[ND];
-    memcpy(y, x, sizeof y);
-    for (int k = 0; k < ND; k++) {
-        int p = k;
-        for (int i = k + 1; i < ND; i++) if (fabs(M[i + k * ND]) > fabs(M[p + k * ND])) p = i;
-        for (int j = 0; j < ND; j++) { const double s = M[k + j * ND]; M[k + j * ND] = M[p + j * ND]; M[p + j * ND] = s; }
-        const double s = y[k]; y[k] = y[p]; y[p] = s;
-        for (int i = k + 1; i < ND; i++) {
-            const double f = M[i + k * ND] / M[k + k * ND];
-            for (int j = k; j < ND; j++) M[i + j * ND] -= f * M[k + j * ND];
-            y[i] -= f * y[k];
-        }
-    }
-    for (int k = ND - 1; k >= 0; k--) {
-        for (int j = k + 1; j < ND; j++) y[k] -= M[k + j * ND] * y[j];
-        y[k] /= M[k + k * ND];
-    }
-    double spread = 0.0, t0[ND];
-    memcpy(t0, t, sizeof t0);
-    MPI_Bcast(t0, ND, MPI_DOUBLE, 0, MPI_COMM_WORLD);
-    for (int i = 0; i < ND; i++) {
-        assert_close(t[i], y[i], 1e-12);
-        spread = fmax(spread, fabs(t[i] - t0[i]));
-    }
-    assert_int_equal(ffc_mpi_allreduce(&spread, 1, 1), FFC_OK);
-    assert_close(spread, 0.0, 0.0);
+    for (int i = 0; i < ND; i++)
+        for (int j = 0; j < ND; j++) M[i * ND + j] = A[i + j * ND];
+    test_dense_solve(ND, M, x, y);
+    for (int i = 0; i < ND; i++) assert_close(t[i], y[i], 1e-12);
+    assert_close(rank_spread(ND, t), 0.0, 0.0);
     /* two equal columns: singular, refused on every rank */
     double *Al = ffc__pdense_reserve(d, ND);
     assert_non_null(Al);
