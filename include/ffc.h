@@ -417,7 +417,9 @@ typedef struct {
     int material_only; /* 1: tangent without the geometric terms (variation of
                           the normal, the foot and the area): positive
                           semi-definite, for a descent direction when the
-                          consistent tangent is indefinite; 0: consistent */
+                          consistent tangent is indefinite; 0: consistent;
+                          2: the material tangent in ranked form
+                          (FFC_TANGENT_RANKED; the nodal law only) */
     double mu;         /* Coulomb coefficient (1), >= 0; read only when
                           effects->friction (mu = 0 then skips all friction work) */
     double eps_t;      /* tangential penalty, > 0 when friction: force/length^3
@@ -612,7 +614,12 @@ enum {
 enum {
     FFC_TANGENT_NONE = 0,       /* residual only */
     FFC_TANGENT_CONSISTENT = 1, /* exact derivative of the residual */
-    FFC_TANGENT_MATERIAL = 2    /* without the geometric terms (see ffc_law.material_only) */
+    FFC_TANGENT_MATERIAL = 2,   /* without the geometric terms (see ffc_law.material_only) */
+    FFC_TANGENT_RANKED = 3      /* the material tangent of the nodal law as a sum of low-rank terms,
+                                   one to four per slave node: K = sum_k U_k V_k^T, written as
+                                   triplets (dof, 2 k, U_k[dof]) and (dof, 2 k + 1, V_k[dof]); the
+                                   condensed Newton then solves a system of the terms' count
+                                   (Woodbury) instead of one of the tangent's support */
 };
 
 /* A pair's method, law and search options. */
@@ -686,7 +693,10 @@ int ffc_scene_search(ffc_scene *s, const double u[], long *linked, long *bad);
 /* Adds the contact residual of every pair at u into R[nv*3] and, unless
  * tangent is FFC_TANGENT_NONE, writes the tangent as triplets (Ti, Tj,
  * Tv)[cap]; *ntrip the triplets written, or needed with FFC_ERR_CAPACITY
- * (R is then incomplete: call again with room). */
+ * (R is then incomplete: call again with room).  FFC_TANGENT_RANKED
+ * numbers the terms over all pairs (a pair's after the pairs before it);
+ * FFC_ERR_VALUE (*bad = the pair) for an augmented Lagrangian pair with
+ * multipliers at quadrature points. */
 int ffc_scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], long cap, long Ti[], long Tj[],
                        double Tv[], long *ntrip, long *bad);
 
@@ -956,7 +966,9 @@ typedef struct {
                           scale) (force), > 0 */
     double frel;       /* relative tolerance (1), >= 0; the scale is the largest
                           |Fx| + |Fy| + |Fz| of the total normal contact force met */
-    int tangent;       /* FFC_TANGENT_CONSISTENT or FFC_TANGENT_MATERIAL */
+    int tangent;       /* FFC_TANGENT_CONSISTENT, FFC_TANGENT_MATERIAL or FFC_TANGENT_RANKED
+                          (every pair on the nodal law; after two ranked iterations that did not
+                          halve the residual, the call goes on with the consistent tangent) */
     long max_dofs;     /* contact dofs C may hold (count), >= 0; 0: the bulk's mmax */
 } ffc_newton_opts;
 
@@ -965,6 +977,8 @@ typedef struct {
     int evals;         /* contact evaluations */
     double t_eval;     /* wall time of those evaluations (seconds) */
     int fallbacks;     /* directions taken from the material tangent */
+    int switched;      /* 1: FFC_TANGENT_RANKED gave way to the consistent tangent (two ranked
+                          iterations that did not halve the residual) */
     long m;            /* contact dofs of the condensed problem at the end (count) */
     long grown;        /* of them, those that joined during the call (count) */
     long support;      /* the largest dense system solved (count) */
@@ -982,7 +996,8 @@ ffc_newton_opts ffc_newton_defaults(void);
  * of its value, which the first step removes); u is the converged
  * displacement on FFC_OK, the last iterate on FFC_INFO_MAXIT and
  * FFC_INFO_NODESCENT, unchanged on an error.  FFC_ERR_EMPTY without a
- * bulk matrix, FFC_ERR_VALUE for a scene with node-to-surface pairs or
+ * bulk matrix, FFC_ERR_VALUE for a scene with node-to-surface pairs (or,
+ * with FFC_TANGENT_RANKED, pairs with multipliers at quadrature points) or
  * options out of range, FFC_ERR_CAPACITY when C would hold more than
  * max_dofs (or the bulk's mmax) dofs (*bad = their count; the columns
  * added before stay, u is unchanged), FFC_ERR_SINGULAR when K + S or a

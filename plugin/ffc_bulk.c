@@ -67,6 +67,11 @@ struct ffc__bulk {
     long kcap;
     double *gv;                /* [gcap] GMRES work: the Krylov basis and its Hessenberg matrix */
     long gcap;
+    int ranked;                /* 1: the contact tangent's triplets are ranked terms (FFC_TANGENT_RANKED) */
+    double *rv;                /* [rcap] ranked work: the terms' values, G U, the p x p system */
+    long rcap;
+    long *ri;                  /* [ricap] ranked work: the terms' starts and entries, pivots */
+    long ricap;
     long nr;                   /* rows R: the dofs the contact evaluation may read (count) */
     long *rows;                /* [nr] */
     long *rpos;                /* [n] position in rows, or -1 */
@@ -94,6 +99,7 @@ void ffc__bulk_free(ffc__bulk *b)
     ffc__pdense_free(b->pd);
     free(b->Ti); free(b->Tj); free(b->Tv); free(b->diag); free(b->big); free(b->sh);
     free(b->dof); free(b->G); free(b->pos); free(b->nd); free(b->A); free(b->piv);
+    free(b->rv); free(b->ri);
     free(b->xc); free(b->w); free(b->r); free(b->dx); free(b->t); free(b->kv);
     free(b->Gc); free(b->ti); free(b->tj); free(b->tv); free(b->Mw); free(b->Gw);
     free(b->rows); free(b->rpos); free(b->H);
@@ -638,7 +644,9 @@ static int reached(ffc__bulk *b, long nt, long *nnew, long *bad)
     for (long i = 0; i < b->n && !st; i++)
         if (b->r[i] != 0.0) REACH(i);
     for (long e = 0; e < nt && !st; e++)
-        if (b->tv[e] != 0.0 && !b->big[b->ti[e]] && !b->big[b->tj[e]]) {
+        if (b->ranked) { /* (tj: the term) */
+            if (b->tv[e] != 0.0) REACH(b->ti[e]);
+        } else if (b->tv[e] != 0.0 && !b->big[b->ti[e]] && !b->big[b->tj[e]]) {
             REACH(b->ti[e]);
             if (!st) REACH(b->tj[e]);
         }
@@ -984,6 +992,115 @@ static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], dou
     return st;
 }
 
+/* Formulation (the ranked direction).  With the tangent in ranked form
+ * (FFC_TANGENT_RANKED) Kc' = U V^T - S_C: term k's columns U_k, V_k from
+ * the triplets (b->ti = dof, b->tj = 2 k or 2 k + 1, b->tv)[nt] (Dirichlet
+ * rows dropped), and a shifted dof d of C one more term (-s_d e_d, e_d).
+ * The Newton equation (I + G Kc') dy = -q, q = G rho, is then (Woodbury)
+ *     (I_p + V^T G U) w = -V^T q,   dy = -q - (G U) w,
+ * a p x p system for p terms (an active slave node gives one term without
+ * friction, four with) in place of the a x a one on the tangent's support
+ * (three dofs of every slave and master node it couples); and
+ * dz = -rho - Kc' dy = -rho - U (V^T dy).  Building G U takes m nnz(U),
+ * V^T G U p nnz(V), the LU p^3 / 1.5.  *np the terms; ranked work grown
+ * in b->rv, b->ri. */
+static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy[], double dz[], double q[],
+                            long *np, long *bad)
+{
+    const long m = b->m, ld = b->ld;
+    for (long k = 0; k < m; k++) b->pos[b->dof[k]] = k;
+    int st = FFC_OK;
+    long p = 0, ne = 0, nsh = 0;
+    for (long e = 0; e < nt; e++) {
+        const long i = b->ti[e];
+        if (b->tv[e] == 0.0 || b->big[i]) continue;
+        if (!isfinite(b->tv[e])) { *bad = i; st = FFC_ERR_NONFINITE; break; }
+        if (b->pos[i] < 0 || b->tj[e] < 0) { *bad = i; st = FFC_ERR_INDEX; break; }
+        if (b->tj[e] / 2 + 1 > p) p = b->tj[e] / 2 + 1;
+        ne++;
+    }
+    for (long k = 0; k < m; k++) nsh += b->sh[b->dof[k]] != 0.0;
+    const long pt = p + nsh, nl = 2 * pt;
+    *np = pt;
+    /* work: the lists' starts [nl + 1], fill [nl], entries [ne + 2 nsh], pivots [pt];
+     * values [ne + 2 nsh], G U [m pt], the system [pt pt], w [pt] */
+    const long needi = 2 * nl + 1 + ne + 2 * nsh + pt, needv = ne + 2 * nsh + m * pt + pt * pt + 2 * pt;
+    if (!st && needi > b->ricap) {
+        long *ri = realloc(b->ri, (size_t)needi * sizeof(long));
+        if (ri) { b->ri = ri; b->ricap = needi; }
+        else st = FFC_ERR_MEMORY;
+    }
+    if (!st && needv > b->rcap) {
+        double *rv = realloc(b->rv, (size_t)needv * sizeof(double));
+        if (rv) { b->rv = rv; b->rcap = needv; }
+        else st = FFC_ERR_MEMORY;
+    }
+    if (st) {
+        for (long k = 0; k < m; k++) b->pos[b->dof[k]] = -1;
+        return st;
+    }
+    long *start = b->ri, *fill = start + nl + 1, *idx = fill + nl, *piv = idx + ne + 2 * nsh;
+    double *val = b->rv, *GU = val + ne + 2 * nsh, *S = GU + m * pt, *wv = S + pt * pt, *vd = wv + pt;
+    for (long l = 0; l <= nl; l++) start[l] = 0;
+    for (long e = 0; e < nt; e++)
+        if (b->tv[e] != 0.0 && !b->big[b->ti[e]]) start[b->tj[e] + 1]++;
+    for (long j = p; j < pt; j++) start[2 * j + 1] = start[2 * j + 2] = 1; /* a shift term: one entry each */
+    for (long l = 0; l < nl; l++) { start[l + 1] += start[l]; fill[l] = start[l]; }
+    for (long e = 0; e < nt; e++) {
+        if (b->tv[e] == 0.0 || b->big[b->ti[e]]) continue;
+        const long at = fill[b->tj[e]]++;
+        idx[at] = b->pos[b->ti[e]];
+        val[at] = b->tv[e];
+    }
+    for (long k = 0, j = p; k < m; k++) {
+        const double sh = b->sh[b->dof[k]];
+        if (sh == 0.0) continue;
+        idx[fill[2 * j]] = k; val[fill[2 * j]++] = -sh;
+        idx[fill[2 * j + 1]] = k; val[fill[2 * j + 1]++] = 1.0;
+        j++;
+    }
+    for (long k = 0; k < m; k++) b->pos[b->dof[k]] = -1;
+    const int mi = (int)m, ldi = (int)ld, one = 1;
+    const double d1 = 1.0, d0 = 0.0;
+    if (m > 0) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, rho, &one, &d0, q, &one); /* q = G rho */
+    /* G U, column by column (G symmetric: its column c is row c) */
+    for (long k = 0; k < pt; k++) {
+        double *gu = GU + k * m;
+        for (long r = 0; r < m; r++) gu[r] = 0.0;
+        for (long e = start[2 * k]; e < start[2 * k + 1]; e++) axpy(m, val[e], b->G + idx[e] * ld, gu);
+    }
+    /* S = I + V^T G U, wv = -V^T q */
+    for (long k = 0; k < pt; k++) {
+        double x = 0.0;
+        for (long e = start[2 * k + 1]; e < start[2 * k + 2]; e++) x += val[e] * q[idx[e]];
+        wv[k] = -x;
+        for (long l = 0; l < pt; l++) {
+            const double *gu = GU + l * m;
+            double y = 0.0;
+            for (long e = start[2 * k + 1]; e < start[2 * k + 2]; e++) y += val[e] * gu[idx[e]];
+            S[k + l * pt] = (k == l) + y;
+        }
+    }
+    st = ffc__lu_solve(pt, S, piv, wv);
+    if (st) return st;
+    /* dy = -q - G U w;  dz = -rho - U (V^T dy) */
+    for (long k = 0; k < m; k++) dy[k] = -q[k];
+    if (pt > 0) {
+        const int pi = (int)pt;
+        const double mone = -1.0;
+        dgemv_("N", &mi, &pi, &mone, GU, &mi, wv, &one, &d1, dy, &one);
+    }
+    for (long k = 0; k < m; k++) dz[k] = -rho[k];
+    for (long k = 0; k < pt; k++) {
+        double x = 0.0;
+        for (long e = start[2 * k + 1]; e < start[2 * k + 2]; e++) x += val[e] * dy[idx[e]];
+        vd[k] = x;
+    }
+    for (long k = 0; k < pt; k++)
+        for (long e = start[2 * k]; e < start[2 * k + 1]; e++) dz[idx[e]] -= val[e] * vd[k];
+    return FFC_OK;
+}
+
 int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const long cand[], ffc__contact_fn fn,
                      void *ctx, const double r[], double u[], const ffc_newton_opts *o, ffc_newton_info *info,
                      long *bad)
@@ -996,8 +1113,10 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
     b->t_eval = &info->t_eval;
     if (nc < 0 || nr < 0) return FFC_ERR_SIZE;
     if (o->max_iter < 1 || o->max_ls < 0 || !(o->ls_tol > 0 && o->ls_tol < 1) || !(o->ftol > 0) ||
-        !isfinite(o->ftol) || !(o->frel >= 0) || !isfinite(o->frel) || o->max_dofs < 0 || (o->tangent != FFC_TANGENT_CONSISTENT && o->tangent != FFC_TANGENT_MATERIAL))
+        !isfinite(o->ftol) || !(o->frel >= 0) || !isfinite(o->frel) || o->max_dofs < 0 ||
+        (o->tangent != FFC_TANGENT_CONSISTENT && o->tangent != FFC_TANGENT_MATERIAL && o->tangent != FFC_TANGENT_RANKED))
         return FFC_ERR_VALUE;
+    b->ranked = o->tangent == FFC_TANGENT_RANKED;
     const long n = b->n;
     for (long i = 0; i < n; i++)
         if (!isfinite(r[i]) || !isfinite(u[i])) { *bad = i; return FFC_ERR_NONFINITE; }
@@ -1099,9 +1218,9 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
     START();
     int status = FFC_INFO_MAXIT, restart = 0, starting = 1;
     double last = 1.0, rprev = HUGE_VAL;
-    int stall = 0;
+    int stall = 0, slow = 0, tmode = o->tangent;
     for (int it = 0; !st; it++) {
-        const int tan = it < o->max_iter ? o->tangent : FFC_TANGENT_NONE;
+        const int tan = it < o->max_iter ? tmode : FFC_TANGENT_NONE;
         st = contact_eval(b, fn, ctx, w, tan, &nt, &fm, bad);
         fscale = fmax(fscale, fm);
         info->evals++;
@@ -1133,21 +1252,36 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
         if (!restart) {
             if (info->nhist < FFC_NEWTON_HIST) info->hist[info->nhist++] = rn;
             stall = rn < 0.5 * rprev ? 0 : stall + 1;
+            slow += tmode == FFC_TANGENT_RANKED && rprev < HUGE_VAL && !(rn < 0.1 * rprev);
             rprev = rn;
         }
         restart = 0;
         if (rn <= tol || ((last <= 1e-14 || stall >= 2) && rn <= 1e3 * tol)) { status = FFC_OK; break; }
         if (it == o->max_iter) break;
+        if (slow >= 2) {
+            /* ranked directions that twice did not halve the residual: the
+             * geometric terms matter here (a corner, a coarse facet), and
+             * the rest of the call takes the consistent tangent (this
+             * iteration again, at the same state) */
+            tmode = FFC_TANGENT_CONSISTENT;
+            b->ranked = 0;
+            slow = 0;
+            info->switched = 1;
+            restart = 1;
+            it--;
+            continue;
+        }
         long na = 0;
         starting = 0;
-        st = direction(b, nt, rho, dy, dz, ap, ad, q, tt, ss, &na, bad);
+        st = b->ranked ? direction_ranked(b, nt, rho, dy, dz, q, &na, bad)
+                       : direction(b, nt, rho, dy, dz, ap, ad, q, tt, ss, &na, bad);
         if (st) break;
         if (na > info->support) info->support = na;
         /* the step of y that the step of z makes: G dz (= dy to the accuracy
          * of the dense solve) */
         if (m) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, dz, &one, &d0s, gdz, &one);
         double g0 = dot(m, rho, gdz);
-        if (!(g0 < 0) && o->tangent == FFC_TANGENT_CONSISTENT) {
+        if (!(g0 < 0) && tmode == FFC_TANGENT_CONSISTENT) {
             /* the consistent tangent is indefinite here: the material one's direction */
             st = contact_eval(b, fn, ctx, w, FFC_TANGENT_MATERIAL, &nt, &fm, bad);
             info->evals++;
@@ -1233,6 +1367,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
 #undef JOIN
 #undef START
     info->m = m;
+    b->ranked = 0;
     if (!st) {
         /* d = d0 + K^-1 P_C^T z: the state whose residual is rho (d_C = y;
          * not d0 - K^-1 P_C^T F_c, which moves C by G rho and the contact

@@ -517,7 +517,9 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
                         long *ntrip, ffc_stats *stats, long *bad)
 {
     const double eps = law->eps_n;
-    const int material_only = law->material_only, fric = ffc__friction_on(fx, law);
+    const int material_only = law->material_only != 0, ranked = law->material_only == 2,
+              fric = ffc__friction_on(fx, law);
+    long nterm = 0; /* ranked: the terms written */
     nodal_t w;
     int s = ffc__nodal_prepare(fx, P, qw, nq, nl, links, lambda, fric ? lam_t : NULL, law, &w, stats, bad);
     if (s) return s;
@@ -702,9 +704,17 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
                     }
                 }
             }
-            for (long i = 0; i < nloc; i++)
+            if (ranked) { /* the term c B_a C_a^T */
+                for (long i = 0; i < nloc; i++)
+                    if (k.Bv[i] != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[i], 2 * nterm, c * k.Bv[i]);
                 for (long j = 0; j < nloc; j++)
-                    if (k.Bv[i] != 0.0 && k.Cv[j] != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[i], k.loc[j], c * k.Bv[i] * k.Cv[j]);
+                    if (k.Cv[j] != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[j], 2 * nterm + 1, k.Cv[j]);
+                nterm++;
+            } else
+                for (long i = 0; i < nloc; i++)
+                    for (long j = 0; j < nloc; j++)
+                        if (k.Bv[i] != 0.0 && k.Cv[j] != 0.0)
+                            ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[i], k.loc[j], c * k.Bv[i] * k.Cv[j]);
             if (ft) {
                 /* dropped directions: dr~ and dm without their components;
                  * dn~ = (I - n~ n~^T) / |m| (accumulated), then
@@ -725,10 +735,21 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
                             x += Tn->f.dt_dr[i][l] * k.Rt[3 * j + l] + Tn->f.dt_dn[i][l] * k.Nt[3 * j + l];
                         dT[i] = x;
                     }
+                    if (ranked) { /* kept for the terms Bf_i dT_i^T below */
+                        for (int i = 0; i < 3; i++) k.Rt[3 * j + i] = dT[i];
+                        continue;
+                    }
                     for (long i = 0; i < nloc; i++) {
                         const double x = k.Bf[3 * i] * dT[0] + k.Bf[3 * i + 1] * dT[1] + k.Bf[3 * i + 2] * dT[2];
                         if (x != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[i], k.loc[j], x);
                     }
+                }
+                for (int d = 0; ranked && d < 3; d++) { /* the terms Bf_d dT_d^T */
+                    for (long i = 0; i < nloc; i++)
+                        if (k.Bf[3 * i + d] != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[i], 2 * nterm, k.Bf[3 * i + d]);
+                    for (long j = 0; j < nloc; j++)
+                        if (k.Rt[3 * j + d] != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[j], 2 * nterm + 1, k.Rt[3 * j + d]);
+                    nterm++;
                 }
             }
             for (long i = 0; i < nloc; i++) k.pos[k.loc[i]] = -1;

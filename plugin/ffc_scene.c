@@ -539,7 +539,7 @@ static pair_call pair_view(const ffc_scene *s, const scene_pair *p, const double
     memset(law, 0, sizeof *law);
     law->eps_n = p->o.eps_n;
     law->nodal = p->o.nodal;
-    law->material_only = tangent == FFC_TANGENT_MATERIAL;
+    law->material_only = tangent == FFC_TANGENT_MATERIAL ? 1 : tangent == FFC_TANGENT_RANKED ? 2 : 0;
     law->mu = p->o.mu;
     /* the default tangential penalty: eps_N per unit slip; in the velocity
      * form eps_N / (dv/du), the same stiffness against the step's slip */
@@ -580,14 +580,17 @@ int ffc_scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], 
     if (!bad) bad = &dummy;
     *bad = -1;
     if (!s || !u || !R || !ntrip) return FFC_ERR_NULL;
-    if (tangent != FFC_TANGENT_NONE && tangent != FFC_TANGENT_CONSISTENT && tangent != FFC_TANGENT_MATERIAL)
+    if (tangent != FFC_TANGENT_NONE && tangent != FFC_TANGENT_CONSISTENT && tangent != FFC_TANGENT_MATERIAL &&
+        tangent != FFC_TANGENT_RANKED)
         return FFC_ERR_VALUE;
+    for (int k = 0; k < s->np && tangent == FFC_TANGENT_RANKED; k++)
+        if (s->p[k].o.method != FFC_METHOD_NTS && !s->p[k].o.nodal) { *bad = k; return FFC_ERR_VALUE; }
     if (tangent != FFC_TANGENT_NONE && (!Ti || !Tj || !Tv)) return FFC_ERR_NULL;
     if (cap < 0) return FFC_ERR_SIZE;
     if (!penalties_set(s, bad)) return FFC_ERR_VALUE;
     int fs = mortar_follow(s, u, tangent == FFC_TANGENT_CONSISTENT, bad); /* the mortar segments at u */
     if (fs) return fs;
-    long nt = 0;
+    long nt = 0, nterm = 0; /* (ranked: the terms of the pairs before) */
     int over = 0;
     for (int k = 0; k < s->np; k++) {
         scene_pair *p = &s->p[k];
@@ -603,6 +606,14 @@ int ffc_scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], 
         if (st == FFC_ERR_CAPACITY) over = 1;
         else if (st) return st;
         keep_augment_stats(&p->st, &old);
+        if (tangent == FFC_TANGENT_RANKED && !over) { /* this pair's terms after the others' */
+            long top = 0;
+            for (long e = nt; e < nt + n; e++) {
+                if (Tj[e] / 2 + 1 > top) top = Tj[e] / 2 + 1;
+                Tj[e] += 2 * nterm;
+            }
+            nterm += top;
+        }
         nt += n;
     }
     *ntrip = nt;
@@ -1209,7 +1220,10 @@ int ffc_scene_newton(ffc_scene *s, const double r[], double u[], const ffc_newto
     if (!s->bulk) return FFC_ERR_EMPTY;
     if (!penalties_set(s, bad)) return FFC_ERR_VALUE;
     for (int k = 0; k < s->np; k++)
-        if (s->p[k].o.method == FFC_METHOD_NTS) { *bad = k; return FFC_ERR_VALUE; }
+        if (s->p[k].o.method == FFC_METHOD_NTS || (o->tangent == FFC_TANGENT_RANKED && !s->p[k].o.nodal)) {
+            *bad = k;
+            return FFC_ERR_VALUE;
+        }
     const long n = 3 * s->nv;
     /* the rows: the dofs of every facet of the pairs (the contact
      * evaluation reads and loads no other); cand: those of every linked

@@ -1447,7 +1447,11 @@ long sceneSolve(const Named &, FFScene *const &C, Matrice_Creuse<double> *const 
 // lsTol = 0.5, tangent = "consistent", maxDofs = 0, [v, dt, dvdu]): Newton on the condensed contact
 // problem (ffc_scene_newton) from u with its residual r, u updated in
 // place (converged when |rho| <= max(tol, rtol x the contact force));
-// hist = |rho| at each iteration. Returns 0 converged, 1 iteration
+// hist = |rho| at each iteration. tangent: "consistent", "material",
+// "ranked" (the material one as low-rank node terms: a dense system of
+// one to four unknowns per active slave node; nodal pairs only) or "auto"
+// (ranked when every pair is nodal and frictionless, else consistent).
+// Returns 0 converged, 1 iteration
 // limit, 2 no descent direction, 3 not factorizable (singular), 4 more
 // contact dofs than maxDofs (0: the bulk's maxContactDofs); u is kept on 3
 // and 4.
@@ -1486,12 +1490,22 @@ long sceneNewton(const Named &nm, FFScene *const &C, KN<double> *const &r, KN<do
     const std::string t = nm.str(4, "consistent");
     if (t == "consistent") o.tangent = FFC_TANGENT_CONSISTENT;
     else if (t == "material") o.tangent = FFC_TANGENT_MATERIAL;
-    else fail(fn, "argument 'tangent': \"" + t + "\" is not \"consistent\" or \"material\"");
+    else if (t == "ranked") o.tangent = FFC_TANGENT_RANKED;
+    else if (t == "auto") { // ranked when every pair is nodal and none has friction, else consistent
+        o.tangent = FFC_TANGENT_RANKED;
+        for (int k = 0; k < ffc_scene_npairs(d.s); k++) {
+            ffc_pair_opts po;
+            ffc_scene_pair_opts(d.s, k, &po);
+            if (!po.nodal || po.mu > 0) o.tangent = FFC_TANGENT_CONSISTENT;
+        }
+    } else fail(fn, "argument 'tangent': \"" + t + "\" is not \"consistent\", \"material\", \"ranked\" or \"auto\"");
     for (int k = 0; k < ffc_scene_npairs(d.s); k++) {
         ffc_pair_opts po;
         ffc_scene_pair_opts(d.s, k, &po);
         if (po.method == FFC_METHOD_NTS)
             fail(fn, "argument 'C': pair " + std::to_string(k) + " is node-to-surface; the condensed Newton takes augmented Lagrangian pairs");
+        if (o.tangent == FFC_TANGENT_RANKED && !po.nodal)
+            fail(fn, "argument 'tangent': \"ranked\" needs nodal multipliers, and pair " + std::to_string(k) + " has them at quadrature points (nodal = 0)");
     }
     scene_motion(fn, nm, d, 5, 6, 7);
     std::vector<double> uv(pu, pu + n);

@@ -325,6 +325,114 @@ static void test_contact_closes(void **state)
     KXZ = 0.0;
 }
 
+/* The ranked tangent (FFC_TANGENT_RANKED): its terms sum to the material
+ * tangent (sum_k U_k V_k^T against the material triplets, dense, to 1e-12
+ * of the largest entry) in each regime, at the full Newton's converged
+ * state; and the condensed Newton with it takes the material tangent's
+ * directions (Woodbury on the terms instead of the LU on the support: the
+ * same iterates to round-off, the same iteration count) to the full
+ * Newton's displacement.  Regimes: frictionless, stick, slip, and a body
+ * held only by contact (the shift's terms). */
+static void test_ranked(void **state)
+{
+    (void)state;
+    enum { CAP = 1 << 16 };
+    static long ci[CAP], cj[CAP];
+    static double cv[CAP], Km[N * N], Kr[N * N], U[N * 64], V[N * 64];
+    const struct { double mu, fx, pz, kgs; const char *regime; } c[4] = {
+        {0.0, 0.0, 0.0, KG, ""}, {0.5, 0.02, 0.0, KG, "stick"}, {0.3, 3.0, 0.0, KG, "slip"}, {0.5, 0.02, 0.2, 0.0, "stick"}};
+    for (int k = 0; k < 4; k++) {
+        long Ti[1024], Tj[1024], nt = 0, bad = -1;
+        double Tv[1024], Kd[N * N], f[N], uf[N] = {0}, r[N];
+        ffc_scene *s = make(c[k].mu, c[k].kgs, &nt, Ti, Tj, Tv, Kd);
+        loads(c[k].fx, c[k].pz, f);
+        full_newton(s, Kd, f, uf);
+        double R[N] = {0}, kmax = 0.0, stick = 0, slip = 0;
+        ffc_scene_stat(s, -1, "stick", 0, &stick);
+        ffc_scene_stat(s, -1, "slip", 0, &slip);
+        if (!strcmp(c[k].regime, "stick")) assert_true(stick > 0 && slip == 0);
+        if (!strcmp(c[k].regime, "slip")) assert_true(slip > 0 && stick == 0);
+        assert_int_equal(ffc_scene_assemble(s, uf, FFC_TANGENT_MATERIAL, R, CAP, ci, cj, cv, &nt, &bad), FFC_OK);
+        memset(Km, 0, sizeof Km);
+        for (long e = 0; e < nt; e++) Km[ci[e] * N + cj[e]] += cv[e];
+        assert_int_equal(ffc_scene_assemble(s, uf, FFC_TANGENT_RANKED, R, CAP, ci, cj, cv, &nt, &bad), FFC_OK);
+        memset(U, 0, sizeof U);
+        memset(V, 0, sizeof V);
+        long p = 0;
+        for (long e = 0; e < nt; e++) {
+            assert_true(ci[e] >= 0 && ci[e] < N && cj[e] >= 0 && cj[e] < 2 * 64);
+            double *W = cj[e] % 2 ? V : U;
+            W[(cj[e] / 2) * N + ci[e]] += cv[e];
+            if (cj[e] / 2 + 1 > p) p = cj[e] / 2 + 1;
+        }
+        assert_true(p >= 4 && p <= (c[k].mu > 0 ? 16 : 4)); /* one term per active slave node, four with friction */
+        memset(Kr, 0, sizeof Kr);
+        for (long t = 0; t < p; t++)
+            for (int i = 0; i < N; i++)
+                for (int j = 0; j < N; j++) Kr[i * N + j] += U[t * N + i] * V[t * N + j];
+        for (int i = 0; i < N * N; i++) kmax = fmax(kmax, fabs(Km[i]));
+        assert_true(kmax > 0.0);
+        for (int i = 0; i < N * N; i++) assert_close(Kr[i], Km[i], 1e-12 * kmax);
+        /* the condensed Newton, material and ranked, from u = 0 */
+        ffc_newton_info in[2];
+        double uc[2][N];
+        for (int t = 0; t < 2; t++) {
+            memset(uc[t], 0, sizeof uc[t]);
+            residual(s, Kd, f, uc[t], r, NULL);
+            double fz = 0.0;
+            ffc_scene_stat(s, -1, "Fz", 0, &fz);
+            ffc_newton_opts o = ffc_newton_defaults();
+            o.ftol = 1e-12 * fmax(fabs(fz), 0.1);
+            o.max_iter = 80;
+            o.tangent = t ? FFC_TANGENT_RANKED : FFC_TANGENT_MATERIAL;
+            assert_int_equal(ffc_scene_newton(s, r, uc[t], &o, &in[t], &bad), FFC_OK);
+            check_same(uc[t], uf);
+        }
+        assert_int_equal(in[1].iters, in[0].iters);
+        for (int h = 0; h < in[0].nhist && h < 4; h++) assert_close(in[1].hist[h], in[0].hist[h], 1e-8 * in[0].hist[0]);
+        /* the dense system: a term per active node (four with friction), and
+         * one per shifted dof of C when K is singular */
+        assert_true(in[1].support <= (c[k].mu > 0 ? 16 : 4) + (c[k].kgs == 0 ? in[1].m : 0));
+        ffc_scene_free(s);
+    }
+}
+
+/* FFC_TANGENT_RANKED needs nodal multipliers: a pair with them at
+ * quadrature points is refused by the assembly (naming the pair) and by
+ * the condensed Newton, before any work */
+static void test_ranked_bad_input(void **state)
+{
+    (void)state;
+    double X[3 * NV], R[N] = {0}, u[N] = {0}, r[N] = {0};
+    test_unit_square(ZSLAVE, X, 0);
+    test_unit_square(0.0, X, 4);
+    test_unit_square(-1.0, X, 8);
+    const long Fs[6] = {0, 2, 1, 0, 3, 2}, Fm[6] = {4, 5, 6, 4, 6, 7};
+    ffc_effects fx = {0, 0, 0};
+    ffc_scene *s = NULL;
+    long bad = -1, nt = 0, ci[64], cj[64];
+    double cv[64];
+    assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_OK);
+    ffc_pair_opts o = ffc_pair_defaults();
+    o.eps_n = EPS;
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fs, 2, Fm, &o, &bad), 0);
+    o.nodal = 0;
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fs, 2, Fm, &o, &bad), 1);
+    assert_int_equal(ffc_scene_assemble(s, u, FFC_TANGENT_RANKED, R, 64, ci, cj, cv, &nt, &bad), FFC_ERR_VALUE);
+    assert_int_equal(bad, 1);
+    long Ti[N], Tj[N];
+    double Tv[N];
+    for (int i = 0; i < N; i++) { Ti[i] = Tj[i] = i; Tv[i] = KG; }
+    assert_int_equal(ffc_scene_set_bulk(s, N, N, Ti, Tj, Tv, 100, &bad), FFC_OK);
+    ffc_newton_opts no = ffc_newton_defaults();
+    no.ftol = 1e-9;
+    no.tangent = FFC_TANGENT_RANKED;
+    ffc_newton_info in;
+    assert_int_equal(ffc_scene_newton(s, r, u, &no, &in, &bad), FFC_ERR_VALUE);
+    assert_int_equal(bad, 1);
+    ffc_scene_free(s);
+}
+
 /* The node-to-surface saddle point on the factored bulk
  * (ffc_scene_nts_solve) against a dense solve of the whole system
  * [K Bf'; B Cm] [x; m] = [f; c] with the same rows: x and m to 1e-10 of
@@ -501,7 +609,8 @@ int main(void)
         cmocka_unit_test(test_quadratic),      cmocka_unit_test(test_growth),
         cmocka_unit_test(test_contact_closes), cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_nts_saddle),     cmocka_unit_test(test_nts_saddle_bad_input),
-        cmocka_unit_test(test_not_positive_definite),
+        cmocka_unit_test(test_not_positive_definite), cmocka_unit_test(test_ranked),
+        cmocka_unit_test(test_ranked_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
