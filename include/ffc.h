@@ -968,7 +968,7 @@ typedef struct {
                           |Fx| + |Fy| + |Fz| of the total normal contact force met */
     int tangent;       /* FFC_TANGENT_CONSISTENT, FFC_TANGENT_MATERIAL or FFC_TANGENT_RANKED
                           (every pair on the nodal law; after two ranked iterations that did not
-                          halve the residual, the call goes on with the consistent tangent) */
+                          reduce the residual 10x, the call goes on with the consistent tangent) */
     long max_dofs;     /* contact dofs C may hold (count), >= 0; 0: the bulk's mmax */
 } ffc_newton_opts;
 
@@ -978,7 +978,7 @@ typedef struct {
     double t_eval;     /* wall time of those evaluations (seconds) */
     int fallbacks;     /* directions taken from the material tangent */
     int switched;      /* 1: FFC_TANGENT_RANKED gave way to the consistent tangent (two ranked
-                          iterations that did not halve the residual) */
+                          iterations that did not reduce the residual 10x) */
     long m;            /* contact dofs of the condensed problem at the end (count) */
     long grown;        /* of them, those that joined during the call (count) */
     long support;      /* the largest dense system solved (count) */

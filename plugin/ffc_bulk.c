@@ -1259,7 +1259,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
         if (rn <= tol || ((last <= 1e-14 || stall >= 2) && rn <= 1e3 * tol)) { status = FFC_OK; break; }
         if (it == o->max_iter) break;
         if (slow >= 2) {
-            /* ranked directions that twice did not halve the residual: the
+            /* ranked directions that twice did not gain 10x: the
              * geometric terms matter here (a corner, a coarse facet), and
              * the rest of the call takes the consistent tangent (this
              * iteration again, at the same state) */
