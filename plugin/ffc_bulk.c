@@ -107,22 +107,6 @@ void ffc__bulk_free(ffc__bulk *b)
     free(b);
 }
 
-/* FFC_ERR_INDEX / FFC_ERR_NONFINITE (*bad = the triplet) for an index
- * outside [0, n) or a non-finite value among (Ti, Tj, Tv)[nt] */
-static int check_triplets(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long *bad)
-{
-    for (long t = 0; t < nt; t++) {
-        const int st = Ti[t] < 0 || Ti[t] >= n || Tj[t] < 0 || Tj[t] >= n ? FFC_ERR_INDEX
-                       : !isfinite(Tv[t])                                  ? FFC_ERR_NONFINITE
-                                                                           : FFC_OK;
-        if (st) {
-            if (bad) *bad = t;
-            return st;
-        }
-    }
-    return FFC_OK;
-}
-
 static int cmp_double(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
@@ -136,7 +120,7 @@ int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const do
     *out = NULL;
     if (nt > 0 && (!Ti || !Tj || !Tv)) return FFC_ERR_NULL;
     if (n <= 0 || nt < 0 || mmax < 0 || n > 2147483647L) return FFC_ERR_SIZE;
-    const int st = check_triplets(n, nt, Ti, Tj, Tv, bad);
+    const int st = ffc__check_triplets(n, nt, Ti, Tj, Tv, bad);
     if (st) return st;
     ffc__bulk *b = calloc(1, sizeof *b);
     if (!b) return FFC_ERR_MEMORY;
@@ -445,7 +429,7 @@ int ffc__bulk_solve(ffc__bulk *b, long nt, const long Ti[], const long Tj[], con
     if (!b || !rhs || !x || (nt > 0 && (!Ti || !Tj || !Tv))) return FFC_ERR_NULL;
     if (nt < 0) return FFC_ERR_SIZE;
     const long n = b->n;
-    int st = check_triplets(n, nt, Ti, Tj, Tv, bad);
+    int st = ffc__check_triplets(n, nt, Ti, Tj, Tv, bad);
     if (st) return st;
     for (long i = 0; i < n; i++)
         if (!isfinite(rhs[i])) {

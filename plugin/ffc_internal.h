@@ -30,6 +30,9 @@ int ffc__project_free(int nn, const double X[][3], const double p[3], ffc_proj *
  * of the largest entry, FFC_ERR_NONFINITE for a non-finite entry
  * (ffc_reduced.c). */
 int ffc__lu_solve(long m, double A[], long piv[], double b[]);
+/* FFC_ERR_INDEX / FFC_ERR_NONFINITE (*bad = the triplet) for an index
+ * outside [0, n) or a non-finite value among (Ti, Tj, Tv)[nt], else FFC_OK */
+int ffc__check_triplets(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long *bad);
 
 /* The dual basis of a linear slave facet from its covered part
  * (ffc_mortar.c, see ffc_dual_basis): the moments c = sum_q w_q,

@@ -5,6 +5,7 @@
 
 #include "ffc.h"
 #include "ffc_mumps.h"
+#include "ffc_internal.h"
 
 #ifdef FFC_MPI
 
@@ -37,24 +38,58 @@ static void call(ffc__mumps *m, int job)
     dmumps_c(&m->id);
 }
 
-int ffc__mumps_create(int fcomm, ffc__mumps **out)
+/* a MUMPS instance of symmetry sym over the communicator fcomm (the
+ * host works too); FFC_ERR_UNAVAILABLE before MPI_Init */
+static int start(ffc__mumps *m, int fcomm, int sym)
 {
-    if (!out) return FFC_ERR_NULL;
-    *out = NULL;
     int init = 0;
     MPI_Initialized(&init);
     if (!init) return FFC_ERR_UNAVAILABLE;
-    ffc__mumps *m = calloc(1, sizeof *m);
-    if (!m) return FFC_ERR_MEMORY;
     m->comm = MPI_Comm_f2c((MPI_Fint)fcomm);
     MPI_Comm_rank(m->comm, &m->rank);
     MPI_Comm_size(m->comm, &m->ranks);
     m->id.comm_fortran = (MUMPS_INT)fcomm;
-    m->id.par = 1;   /* the host works too */
-    m->id.sym = 2;   /* symmetric (LDL^T: its null and negative pivots are counted; SYM=1 counts no null ones) */
+    m->id.par = 1;
+    m->id.sym = sym;
     call(m, -1);
-    if (m->id.INFOG(1) < 0) { free(m); return FFC_ERR_MEMORY; }
+    if (m->id.INFOG(1) < 0) return FFC_ERR_MEMORY;
     m->have = 1;
+    return FFC_OK;
+}
+
+/* this rank's share of the entries: (ri, rj, rv)[nl] allocated (on every
+ * rank, or FFC_ERR_MEMORY on every rank) and handed to MUMPS as its
+ * distributed input; the caller fills them (1-based indices) */
+static int share(ffc__mumps *m, long nl)
+{
+    free(m->ri); free(m->rj); free(m->rv);
+    m->ri = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
+    m->rj = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
+    m->rv = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(double));
+    int ok = m->ri && m->rj && m->rv, all = 0;
+    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, m->comm);
+    if (!all) return FFC_ERR_MEMORY;
+    m->nloc = nl;
+    DMUMPS_STRUC_C *id = &m->id;
+    id->ICNTL(1) = -1; id->ICNTL(2) = -1; id->ICNTL(3) = -1; id->ICNTL(4) = 0;   /* kernels never print */
+    id->ICNTL(18) = 3;       /* distributed input of the entries */
+    id->nnz_loc = nl;
+    id->nz_loc = (MUMPS_INT)nl;
+    id->irn_loc = m->ri;
+    id->jcn_loc = m->rj;
+    id->a_loc = m->rv;
+    return FFC_OK;
+}
+
+int ffc__mumps_create(int fcomm, ffc__mumps **out)
+{
+    if (!out) return FFC_ERR_NULL;
+    *out = NULL;
+    ffc__mumps *m = calloc(1, sizeof *m);
+    if (!m) return FFC_ERR_MEMORY;
+    /* symmetric (LDL^T: its null and negative pivots are counted; SYM=1 counts no null ones) */
+    const int st = start(m, fcomm, 2);
+    if (st) { free(m); return st; }
     *out = m;
     return FFC_OK;
 }
@@ -73,32 +108,18 @@ int ffc__mumps_factor(ffc__mumps *m, long n, long nz, const int ti[], const int 
     if (n <= 0 || nz < 0 || n > 2147483647L) return FFC_ERR_SIZE;
     /* this rank's share: the entries [lo, hi) */
     const long lo = nz * m->rank / m->ranks, hi = nz * (m->rank + 1) / m->ranks, nl = hi - lo;
-    free(m->ri); free(m->rj); free(m->rv);
-    m->ri = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
-    m->rj = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
-    m->rv = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(double));
-    int ok = m->ri && m->rj && m->rv, all = 0;
-    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, m->comm);
-    if (!all) return FFC_ERR_MEMORY;
+    if (share(m, nl)) return FFC_ERR_MEMORY;
     for (long k = 0; k < nl; k++) {
         m->ri[k] = (MUMPS_INT)ti[lo + k] + 1;
         m->rj[k] = (MUMPS_INT)tj[lo + k] + 1;
         m->rv[k] = tv[lo + k];
     }
-    m->nloc = nl;
     DMUMPS_STRUC_C *id = &m->id;
-    id->ICNTL(1) = -1; id->ICNTL(2) = -1; id->ICNTL(3) = -1; id->ICNTL(4) = 0;   /* kernels never print */
-    id->ICNTL(18) = 3;       /* distributed input of the entries */
     id->ICNTL(20) = 0;       /* dense right-hand sides, on the host */
     id->ICNTL(21) = 0;       /* the solution on the host, over the right-hand sides */
     id->ICNTL(24) = 1;       /* null pivots detected ... */
     id->CNTL(3) = 1e-12;     /* ... below 1e-12 of K's norm: CHOLMOD's rcond test */
     id->n = (MUMPS_INT)n;
-    id->nnz_loc = nl;
-    id->nz_loc = (MUMPS_INT)nl;
-    id->irn_loc = m->ri;
-    id->jcn_loc = m->rj;
-    id->a_loc = m->rv;
     m->factored = 0;
     call(m, 4);  /* analysis and factorization */
     const int e = id->INFOG(1);
@@ -131,51 +152,28 @@ int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], 
     if (!p || !b || !x || (nt > 0 && (!Ti || !Tj || !Tv))) return FFC_ERR_NULL;
     if (n <= 0 || nt < 0 || n > 2147483647L) return FFC_ERR_SIZE;
     if (p->engine != FFC_ENGINE_MUMPS) return p->engine == FFC_ENGINE_CHOLMOD ? FFC_ERR_UNAVAILABLE : FFC_ERR_VALUE;
-    for (long t = 0; t < nt; t++) {
-        const int st = Ti[t] < 0 || Ti[t] >= n || Tj[t] < 0 || Tj[t] >= n ? FFC_ERR_INDEX
-                       : !isfinite(Tv[t])                                  ? FFC_ERR_NONFINITE
-                                                                           : FFC_OK;
-        if (st) { if (bad) *bad = t; return st; }
-    }
+    int st = ffc__check_triplets(n, nt, Ti, Tj, Tv, bad);
+    if (st) return st;
     for (long i = 0; i < n; i++)
         if (!isfinite(b[i])) { if (bad) *bad = i; return FFC_ERR_NONFINITE; }
-    int init = 0;
-    MPI_Initialized(&init);
-    if (!init) return FFC_ERR_UNAVAILABLE;
     ffc__mumps m = {0};
-    m.comm = MPI_Comm_f2c((MPI_Fint)p->comm);
-    MPI_Comm_rank(m.comm, &m.rank);
-    MPI_Comm_size(m.comm, &m.ranks);
-    m.id.comm_fortran = (MUMPS_INT)p->comm;
-    m.id.par = 1;
-    m.id.sym = 0;    /* general: a contact tangent with friction is not symmetric */
-    call(&m, -1);
-    if (m.id.INFOG(1) < 0) return FFC_ERR_MEMORY;
+    st = start(&m, p->comm, 0);   /* general: a contact tangent with friction is not symmetric */
+    if (st) return st;
     const long lo = p->own ? 0 : nt * m.rank / m.ranks, nl = p->own ? nt : nt * (m.rank + 1) / m.ranks - lo;
-    MUMPS_INT *ri = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
-    MUMPS_INT *rj = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
-    double *rv = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(double));
-    int ok = ri && rj && rv, all = 0, st = FFC_OK;
-    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, m.comm);
-    if (!all) st = FFC_ERR_MEMORY;
-    else {
+    st = share(&m, nl);
+    if (!st) {
         for (long k = 0; k < nl; k++) {
-            ri[k] = (MUMPS_INT)Ti[lo + k] + 1;
-            rj[k] = (MUMPS_INT)Tj[lo + k] + 1;
-            rv[k] = Tv[lo + k];
+            m.ri[k] = (MUMPS_INT)Ti[lo + k] + 1;
+            m.rj[k] = (MUMPS_INT)Tj[lo + k] + 1;
+            m.rv[k] = Tv[lo + k];
         }
         DMUMPS_STRUC_C *id = &m.id;
-        id->ICNTL(1) = -1; id->ICNTL(2) = -1; id->ICNTL(3) = -1; id->ICNTL(4) = 0;
-        id->ICNTL(18) = 3;
         /* no null-pivot detection: like UMFPACK, a tiny pivot (a body that
          * only contact will hold) gives a huge solution along its rigid
          * motion, which the scene library's free-body step shortens; an
          * exactly zero pivot is refused (INFOG(1) = -10) */
         id->ICNTL(24) = 0;
         id->n = (MUMPS_INT)n;
-        id->nnz_loc = nl;
-        id->nz_loc = (MUMPS_INT)nl;
-        id->irn_loc = ri; id->jcn_loc = rj; id->a_loc = rv;
         memcpy(x, b, (size_t)n * sizeof(double));
         id->rhs = x;
         id->nrhs = 1;
@@ -187,7 +185,7 @@ int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], 
         else MPI_Bcast(x, (int)n, MPI_DOUBLE, 0, m.comm);
     }
     call(&m, -2);
-    free(ri); free(rj); free(rv);
+    free(m.ri); free(m.rj); free(m.rv);
     return st;
 }
 

@@ -1,6 +1,9 @@
 /* ffc_sparse.c: sparse-matrix utilities: the duplicates of a triplet list
  * summed, rows grouped (what the plugin hands to FreeFEM). */
+#include <math.h>
+
 #include "ffc.h"
+#include "ffc_internal.h"
 
 long ffc_triplets_sum(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long Ci[],
                       long Cj[], double Cv[], long rp[], long w[])
@@ -38,4 +41,20 @@ long ffc_triplets_sum(long n, long nt, const long Ti[], const long Tj[], const d
         }
     }
     return nz;
+}
+
+/* FFC_ERR_INDEX / FFC_ERR_NONFINITE (*bad = the triplet) for an index
+ * outside [0, n) or a non-finite value among (Ti, Tj, Tv)[nt] */
+int ffc__check_triplets(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long *bad)
+{
+    for (long t = 0; t < nt; t++) {
+        const int st = Ti[t] < 0 || Ti[t] >= n || Tj[t] < 0 || Tj[t] >= n ? FFC_ERR_INDEX
+                       : !isfinite(Tv[t])                                  ? FFC_ERR_NONFINITE
+                                                                           : FFC_OK;
+        if (st) {
+            if (bad) *bad = t;
+            return st;
+        }
+    }
+    return FFC_OK;
 }
