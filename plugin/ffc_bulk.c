@@ -42,7 +42,7 @@ struct ffc__bulk {
     double *G;                 /* [ld*ld] compliance (column-major) */
     long *pos;                 /* [n] work (-1) */
     long *nd;                  /* [n] work: new contact dofs */
-    double *A;                 /* [ld*ld] work: I + G Kcc */
+    double *A;                 /* [ld*ld] work: I + G Kcc (NULL until its first use) */
     long *piv;                 /* [ld] work */
     double *xc, *w, *r, *dx, *t; /* [ld], [n], [n], [n], [n] work */
     double *kv;                /* [kvcap] work: Kc's values without Dirichlet rows and columns */
@@ -212,14 +212,13 @@ static int grow(ffc__bulk *b, long m)
     long ld = b->ld ? b->ld : 64;
     while (ld < m) ld *= 2;
     double *G = calloc((size_t)ld * ld, sizeof(double));
-    double *A = malloc((size_t)ld * ld * sizeof(double));
     long *dof = malloc((size_t)ld * sizeof(long)), *piv = malloc((size_t)ld * sizeof(long));
     double *xc = malloc((size_t)ld * sizeof(double));
     double *Gc = malloc((size_t)ld * ld * sizeof(double));
     double *H = b->nr ? realloc(b->H, (size_t)b->nr * ld * sizeof(double)) : b->H;
     if (H) b->H = H;
-    if (!G || !A || !dof || !piv || !xc || !Gc || (b->nr && !H)) {
-        free(G); free(A); free(dof); free(piv); free(xc); free(Gc);
+    if (!G || !dof || !piv || !xc || !Gc || (b->nr && !H)) {
+        free(G); free(dof); free(piv); free(xc); free(Gc);
         return FFC_ERR_MEMORY;
     }
     for (long c = 0; c < b->mc; c++) memcpy(Gc + c * ld, b->Gc + c * b->ld, (size_t)b->mc * sizeof(double));
@@ -230,9 +229,17 @@ static int grow(ffc__bulk *b, long m)
         dof[c] = b->dof[c];
     }
     free(b->G); free(b->A); free(b->dof); free(b->piv); free(b->xc);
-    b->G = G; b->A = A; b->dof = dof; b->piv = piv; b->xc = xc;
+    b->G = G; b->A = NULL; b->dof = dof; b->piv = piv; b->xc = xc; /* (A: at its first use, dense_a) */
     b->ld = ld;
     return FFC_OK;
+}
+
+/* the dense work A (ld x ld), allocated at its first use: the ranked
+ * condensed Newton never needs it (NULL when out of memory) */
+static double *dense_a(ffc__bulk *b)
+{
+    if (!b->A) b->A = malloc((size_t)b->ld * b->ld * sizeof(double));
+    return b->A;
 }
 
 /* y = (K + S)^-1 rhs, one back-solve */
@@ -414,6 +421,7 @@ static int solve_once(ffc__bulk *b, long nt, const long Ti[], const long Tj[], c
     lift_dirichlet(b, nt, Ti, Tj, Tv, rhs, t);
     int st = backsolve(b, t, x);
     if (st) return st;
+    if (b->m > 0 && !dense_a(b)) return FFC_ERR_MEMORY;
     st = ffc_reduced_solve(n, b->ld, b->m, b->dof, b->G, nt, Ti, Tj, b->kv, b->sh, x, b->xc, b->w, b->A, b->piv,
                            b->pos);
     if (st) return st;
@@ -915,10 +923,11 @@ static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], dou
         if (git >= 0) b->info.kept++;
         /* else A = I + G_aa M, column by column over M's nonzeros (a few
          * dozen per column: a^2 x that, against 2 a^3 for a dense product) */
-        double *A = b->A;
         /* (several ranks and a large support: each rank builds the columns
          * it holds and the LU is shared, ffc__pdense) */
         const int dist = git < 0 && b->pd && a >= PDENSE_MIN;
+        double *A = git < 0 && !dist ? dense_a(b) : b->A;
+        if (git < 0 && !dist && !A) st = FFC_ERR_MEMORY;
         double *Al = dist ? ffc__pdense_reserve(b->pd, a) : NULL;
         if (dist && !Al) st = FFC_ERR_MEMORY;
         for (long j = 0; j < a && git < 0 && !st; j++) {
