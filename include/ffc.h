@@ -970,6 +970,10 @@ typedef struct {
                           (every pair on the nodal law; after two ranked iterations that did not
                           reduce the residual 10x, the call goes on with the consistent tangent) */
     long max_dofs;     /* contact dofs C may hold (count), >= 0; 0: the bulk's mmax */
+    int min_iter;      /* iterations taken even when the start meets the tolerance (0 or 1; 1 after
+                          an augmentation: multipliers that changed at a node of small weight move
+                          the residual by less than the tolerance, and without a step the next
+                          augmentation would repeat the same change) */
 } ffc_newton_opts;
 
 typedef struct {
@@ -988,7 +992,7 @@ typedef struct {
 } ffc_newton_info;
 
 /* Defaults: max_iter 25, max_ls 8, ls_tol 0.5, ftol 0 (must be set),
- * frel 0, consistent tangent, max_dofs 0. */
+ * frel 0, consistent tangent, max_dofs 0, min_iter 0. */
 ffc_newton_opts ffc_newton_defaults(void);
 
 /* Runs the condensed Newton from u[n] (n = 3 nv) with its residual r[n]

@@ -1106,7 +1106,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
     b->t_eval = &info->t_eval;
     if (nc < 0 || nr < 0) return FFC_ERR_SIZE;
     if (o->max_iter < 1 || o->max_ls < 0 || !(o->ls_tol > 0 && o->ls_tol < 1) || !(o->ftol > 0) ||
-        !isfinite(o->ftol) || !(o->frel >= 0) || !isfinite(o->frel) || o->max_dofs < 0 ||
+        !isfinite(o->ftol) || !(o->frel >= 0) || !isfinite(o->frel) || o->max_dofs < 0 || o->min_iter < 0 || o->min_iter > 1 ||
         (o->tangent != FFC_TANGENT_CONSISTENT && o->tangent != FFC_TANGENT_MATERIAL && o->tangent != FFC_TANGENT_RANKED))
         return FFC_ERR_VALUE;
     b->ranked = o->tangent == FFC_TANGENT_RANKED;
@@ -1249,7 +1249,8 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
             rprev = rn;
         }
         restart = 0;
-        if (rn <= tol || ((last <= 1e-14 || stall >= 2) && rn <= 1e3 * tol)) { status = FFC_OK; break; }
+        if ((rn <= tol || ((last <= 1e-14 || stall >= 2) && rn <= 1e3 * tol)) &&
+            (info->iters >= o->min_iter || !(rn > 0.0))) { status = FFC_OK; break; }
         if (it == o->max_iter) break;
         if (slow >= 2) {
             /* ranked directions that twice did not gain 10x: the

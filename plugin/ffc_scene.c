@@ -1181,6 +1181,7 @@ ffc_newton_opts ffc_newton_defaults(void)
     o.frel = 0.0;
     o.tangent = FFC_TANGENT_CONSISTENT;
     o.max_dofs = 0;
+    o.min_iter = 0;
     return o;
 }
 

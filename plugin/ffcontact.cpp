@@ -1444,7 +1444,7 @@ long sceneSolve(const Named &, FFScene *const &C, Matrice_Creuse<double> *const 
 }
 
 // ffcNewton(C, r, u, hist, tol = , rtol = 0, maxIter = 25, maxLineSearch = 8,
-// lsTol = 0.5, tangent = "consistent", maxDofs = 0, [v, dt, dvdu]): Newton on the condensed contact
+// lsTol = 0.5, tangent = "consistent", maxDofs = 0, minIter = 0, [v, dt, dvdu]): Newton on the condensed contact
 // problem (ffc_scene_newton) from u with its residual r, u updated in
 // place (converged when |rho| <= max(tol, rtol x the contact force));
 // hist = |rho| at each iteration. tangent: "consistent", "material",
@@ -1459,7 +1459,8 @@ basicAC_F0::name_and_type newton_names[] = {{"tol", &typeid(double)},       {"ma
                                             {"maxLineSearch", &typeid(long)}, {"lsTol", &typeid(double)},
                                             {"tangent", &typeid(string *)},  {"v", &typeid(KN<double> *)},
                                             {"dt", &typeid(double)},         {"dvdu", &typeid(double)},
-                                            {"rtol", &typeid(double)},       {"maxDofs", &typeid(long)}};
+                                            {"rtol", &typeid(double)},       {"maxDofs", &typeid(long)},
+                                            {"minIter", &typeid(long)}};
 
 long sceneNewton(const Named &nm, FFScene *const &C, KN<double> *const &r, KN<double> *const &u,
                  KN<double> *const &hist)
@@ -1485,6 +1486,9 @@ long sceneNewton(const Named &nm, FFScene *const &C, KN<double> *const &r, KN<do
     if (!(o.ls_tol > 0 && o.ls_tol < 1)) fail(fn, "argument 'lsTol': " + num(o.ls_tol) + " must be in (0, 1)");
     o.frel = nm.real(8, 0);
     o.max_dofs = nm.integer(9, 0);
+    const long mn = nm.integer(10, 0);
+    if (mn < 0 || mn > 1) fail(fn, "argument 'minIter': " + std::to_string(mn) + " must be 0 or 1");
+    o.min_iter = (int)mn;
     if (o.max_dofs < 0) fail(fn, "argument 'maxDofs': " + std::to_string(o.max_dofs) + " must be >= 0 (0: the bulk's maxContactDofs)");
     if (!(o.frel >= 0) || std::isinf(o.frel)) fail(fn, "argument 'rtol': " + num(o.frel) + " must be finite and >= 0");
     const std::string t = nm.str(4, "consistent");
@@ -1740,7 +1744,7 @@ void init_scene()
     Global.Add("ffcBulk", "(", named<long, S, M>("ffcBulk", bulk_names, 1, sceneBulk));
     Global.Add("ffcSolve", "(", named<long, S, M, V, V>("ffcSolve", nullptr, 0, sceneSolve));
     Global.Add("ffcNTSSolve", "(", named<long, S, V, V, V, V, V>("ffcNTSSolve", nullptr, 0, sceneNTSSolve));
-    Global.Add("ffcNewton", "(", named<long, S, V, V, V>("ffcNewton", newton_names, 10, sceneNewton));
+    Global.Add("ffcNewton", "(", named<long, S, V, V, V>("ffcNewton", newton_names, 11, sceneNewton));
     Global.Add("ffcSolverStat", "(", named<double, S, string *>("ffcSolverStat", nullptr, 0, sceneSolverStat));
     Global.Add("ffcNTSStep", "(", named<long, S>("ffcNTSStep", nullptr, 0, sceneNtsStep));
     Global.Add("ffcRows", "(", named<long, S, V, V, M, M, M, V>("ffcRows", nullptr, 0, sceneRows));

@@ -397,6 +397,43 @@ static void test_ranked(void **state)
     }
 }
 
+/* min_iter = 1 (after an augmentation): from the converged state, whose
+ * residual is within the tolerance but not zero, the call takes one
+ * iteration (with 0: none) and stays at the answer; min_iter = 2 is
+ * refused. */
+static void test_min_iter(void **state)
+{
+    (void)state;
+    long Ti[1024], Tj[1024], nt = 0, bad = -1;
+    double Tv[1024], Kd[N * N], f[N], uf[N] = {0}, r[N];
+    ffc_scene *s = make(0.0, KG, &nt, Ti, Tj, Tv, Kd);
+    loads(0.0, 0.0, f);
+    full_newton(s, Kd, f, uf);
+    double fz = 0.0;
+    ffc_scene_stat(s, -1, "Fz", 0, &fz);
+    for (int mi = 0; mi < 2; mi++) {
+        double u[N];
+        memcpy(u, uf, sizeof u);
+        residual(s, Kd, f, u, r, NULL);
+        assert_true(free_norm(r) > 0.0);
+        ffc_newton_opts o = ffc_newton_defaults();
+        o.ftol = 1e-6 * fabs(fz); /* the full Newton's state is well within it */
+        o.min_iter = mi;
+        ffc_newton_info in;
+        assert_int_equal(ffc_scene_newton(s, r, u, &o, &in, &bad), FFC_OK);
+        assert_int_equal(in.iters, mi);
+        check_same(u, uf);
+    }
+    ffc_newton_opts o = ffc_newton_defaults();
+    o.ftol = 1.0;
+    o.min_iter = 2;
+    ffc_newton_info in;
+    double u[N];
+    memcpy(u, uf, sizeof u);
+    assert_int_equal(ffc_scene_newton(s, r, u, &o, &in, &bad), FFC_ERR_VALUE);
+    ffc_scene_free(s);
+}
+
 /* FFC_TANGENT_RANKED needs nodal multipliers: a pair with them at
  * quadrature points is refused by the assembly (naming the pair) and by
  * the condensed Newton, before any work */
@@ -610,7 +647,7 @@ int main(void)
         cmocka_unit_test(test_contact_closes), cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_nts_saddle),     cmocka_unit_test(test_nts_saddle_bad_input),
         cmocka_unit_test(test_not_positive_definite), cmocka_unit_test(test_ranked),
-        cmocka_unit_test(test_ranked_bad_input),
+        cmocka_unit_test(test_ranked_bad_input), cmocka_unit_test(test_min_iter),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
