@@ -67,7 +67,6 @@ struct ffc__bulk {
     long kcap;
     double *gv;                /* [gcap] GMRES work: the Krylov basis and its Hessenberg matrix */
     long gcap;
-    int ranked;                /* 1: the contact tangent's triplets are ranked terms (FFC_TANGENT_RANKED) */
     double *rv;                /* [rcap] ranked work: the terms' values, G U, the p x p system */
     long rcap;
     long *ri;                  /* [ricap] ranked work: the terms' starts and entries, pivots */
@@ -618,9 +617,10 @@ static int first_factor(ffc__bulk *b, long nreach, const long reach[], long nc, 
 }
 
 /* the free dofs outside C that the force in b->r or a triplet of the
- * tangent (b->ti, tj, tv)[nt] (free row and column) reaches, into
+ * tangent (b->ti, tj, tv)[nt] (free row and column; with ranked, the
+ * FFC_TANGENT_RANKED form, its row: tj is a term) reaches, into
  * b->nd[*nnew]; FFC_ERR_INDEX (*bad = the dof) for one outside the rows */
-static int reached(ffc__bulk *b, long nt, long *nnew, long *bad)
+static int reached(ffc__bulk *b, long nt, int ranked, long *nnew, long *bad)
 {
     long *pos = b->pos, c = 0;
     int st = FFC_OK;
@@ -636,7 +636,7 @@ static int reached(ffc__bulk *b, long nt, long *nnew, long *bad)
     for (long i = 0; i < b->n && !st; i++)
         if (b->r[i] != 0.0) REACH(i);
     for (long e = 0; e < nt && !st; e++)
-        if (b->ranked) { /* (tj: the term) */
+        if (ranked) {
             if (b->tv[e] != 0.0) REACH(b->ti[e]);
         } else if (b->tv[e] != 0.0 && !b->big[b->ti[e]] && !b->big[b->tj[e]]) {
             REACH(b->ti[e]);
@@ -997,6 +997,15 @@ static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], dou
  * dz = -rho - Kc' dy = -rho - U (V^T dy).  Building G U takes m nnz(U),
  * V^T G U p nnz(V), the LU p^3 / 1.5.  *np the terms; ranked work grown
  * in b->rv, b->ri. */
+/* sum over the entries e of list l of val[e] x[idx[e]] (the ranked lists:
+ * start[l] .. start[l + 1]) */
+static double list_dot(const long start[], const long idx[], const double val[], long l, const double x[])
+{
+    double v = 0.0;
+    for (long e = start[l]; e < start[l + 1]; e++) v += val[e] * x[idx[e]];
+    return v;
+}
+
 static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy[], double dz[], double q[],
                             long *np, long *bad)
 {
@@ -1064,15 +1073,8 @@ static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy
     }
     /* S = I + V^T G U, wv = -V^T q */
     for (long k = 0; k < pt; k++) {
-        double x = 0.0;
-        for (long e = start[2 * k + 1]; e < start[2 * k + 2]; e++) x += val[e] * q[idx[e]];
-        wv[k] = -x;
-        for (long l = 0; l < pt; l++) {
-            const double *gu = GU + l * m;
-            double y = 0.0;
-            for (long e = start[2 * k + 1]; e < start[2 * k + 2]; e++) y += val[e] * gu[idx[e]];
-            S[k + l * pt] = (k == l) + y;
-        }
+        wv[k] = -list_dot(start, idx, val, 2 * k + 1, q);
+        for (long l = 0; l < pt; l++) S[k + l * pt] = (k == l) + list_dot(start, idx, val, 2 * k + 1, GU + l * m);
     }
     st = ffc__lu_solve(pt, S, piv, wv);
     if (st) return st;
@@ -1084,11 +1086,7 @@ static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy
         dgemv_("N", &mi, &pi, &mone, GU, &mi, wv, &one, &d1, dy, &one);
     }
     for (long k = 0; k < m; k++) dz[k] = -rho[k];
-    for (long k = 0; k < pt; k++) {
-        double x = 0.0;
-        for (long e = start[2 * k + 1]; e < start[2 * k + 2]; e++) x += val[e] * dy[idx[e]];
-        vd[k] = x;
-    }
+    for (long k = 0; k < pt; k++) vd[k] = list_dot(start, idx, val, 2 * k + 1, dy);
     for (long k = 0; k < pt; k++)
         for (long e = start[2 * k]; e < start[2 * k + 1]; e++) dz[idx[e]] -= val[e] * vd[k];
     return FFC_OK;
@@ -1109,7 +1107,6 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
         !isfinite(o->ftol) || !(o->frel >= 0) || !isfinite(o->frel) || o->max_dofs < 0 || o->min_iter < 0 || o->min_iter > 1 ||
         (o->tangent != FFC_TANGENT_CONSISTENT && o->tangent != FFC_TANGENT_MATERIAL && o->tangent != FFC_TANGENT_RANKED))
         return FFC_ERR_VALUE;
-    b->ranked = o->tangent == FFC_TANGENT_RANKED;
     const long n = b->n;
     for (long i = 0; i < n; i++)
         if (!isfinite(r[i]) || !isfinite(u[i])) { *bad = i; return FFC_ERR_NONFINITE; }
@@ -1125,7 +1122,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
     info->evals++;
     if (!st) {
         for (long i = 0; i < n; i++) w[i] = b->big[i] ? -r[i] : b->r[i] - r[i];
-        st = reached(b, 0, &nnew, bad);
+        st = reached(b, 0, 0, &nnew, bad);
     }
     long *reach = NULL;
     if (!st && !b->factored) { /* (the force's dofs kept: free_dofs writes b->nd) */
@@ -1135,7 +1132,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
     }
     if (!st) st = first_factor(b, nnew, reach, nc, cand, cap, bad);
     free(reach);
-    if (!st) st = reached(b, 0, &nnew, bad);
+    if (!st) st = reached(b, 0, 0, &nnew, bad);
     if (!st) st = add_to_c(b, nnew, b->nd, cap, bad);
     if (!st) st = factor_g(b);
     if (st) return st;
@@ -1217,7 +1214,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
         st = contact_eval(b, fn, ctx, w, tan, &nt, &fm, bad);
         fscale = fmax(fscale, fm);
         info->evals++;
-        if (!st) st = reached(b, tan ? nt : 0, &nnew, bad);
+        if (!st) st = reached(b, tan ? nt : 0, tan == FFC_TANGENT_RANKED, &nnew, bad);
         if (!st && nnew && starting) {
             /* the start reaches dofs outside C (at the first call of a load
              * step the rest moves by the whole increment): they join C and
@@ -1258,7 +1255,6 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
              * the rest of the call takes the consistent tangent (this
              * iteration again, at the same state) */
             tmode = FFC_TANGENT_CONSISTENT;
-            b->ranked = 0;
             slow = 0;
             info->switched = 1;
             restart = 1;
@@ -1267,7 +1263,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
         }
         long na = 0;
         starting = 0;
-        st = b->ranked ? direction_ranked(b, nt, rho, dy, dz, q, &na, bad)
+        st = tmode == FFC_TANGENT_RANKED ? direction_ranked(b, nt, rho, dy, dz, q, &na, bad)
                        : direction(b, nt, rho, dy, dz, ap, ad, q, tt, ss, &na, bad);
         if (st) break;
         if (na > info->support) info->support = na;
@@ -1296,7 +1292,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
         W_AT(a_, rt);                                                                                              \
         st = contact_eval(b, fn, ctx, w, FFC_TANGENT_NONE, &nt, &fm, bad);                                         \
         info->evals++;                                                                                             \
-        if (!st) st = reached(b, 0, &nnew, bad);                                                                   \
+        if (!st) st = reached(b, 0, 0, &nnew, bad);                                                                   \
         if (!st && nnew) { JOIN(); restart = 1; }                                                                  \
         if (!st && !restart) {                                                                                     \
             st = force_c(b, rt, Fp, bad);                                                                          \
@@ -1361,7 +1357,6 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
 #undef JOIN
 #undef START
     info->m = m;
-    b->ranked = 0;
     if (!st) {
         /* d = d0 + K^-1 P_C^T z: the state whose residual is rho (d_C = y;
          * not d0 - K^-1 P_C^T F_c, which moves C by G rho and the contact

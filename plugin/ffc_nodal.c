@@ -250,6 +250,20 @@ static int emit(long *nt, long cap, long Ti[], long Tj[], double Tv[], long i, l
     return *nt <= cap;
 }
 
+/* one ranked term (FFC_TANGENT_RANKED) of a node's dofs loc[nloc]: its
+ * U column c x[i s] as triplets (loc[i], 2 term, .), its V column
+ * y[j s] as (loc[j], 2 term + 1, .) (s: the stride of x and y) */
+static int emit_term(long *nt, long cap, long Ti[], long Tj[], double Tv[], long nloc, const long loc[], double c,
+                     const double x[], const double y[], int s, long term)
+{
+    int ok = 1;
+    for (long i = 0; i < nloc; i++)
+        if (x[i * s] != 0.0) ok &= emit(nt, cap, Ti, Tj, Tv, loc[i], 2 * term, c * x[i * s]);
+    for (long j = 0; j < nloc; j++)
+        if (y[j * s] != 0.0) ok &= emit(nt, cap, Ti, Tj, Tv, loc[j], 2 * term + 1, y[j * s]);
+    return ok;
+}
+
 /* per-node work arrays of the material stiffness */
 typedef struct {
     long *start, *lst, *pos, *loc;
@@ -704,13 +718,9 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
                     }
                 }
             }
-            if (ranked) { /* the term c B_a C_a^T */
-                for (long i = 0; i < nloc; i++)
-                    if (k.Bv[i] != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[i], 2 * nterm, c * k.Bv[i]);
-                for (long j = 0; j < nloc; j++)
-                    if (k.Cv[j] != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[j], 2 * nterm + 1, k.Cv[j]);
-                nterm++;
-            } else
+            if (ranked) /* the term c B_a C_a^T */
+                ok &= emit_term(&nt, cap, Ti, Tj, Tv, nloc, k.loc, c, k.Bv, k.Cv, 1, nterm++);
+            else
                 for (long i = 0; i < nloc; i++)
                     for (long j = 0; j < nloc; j++)
                         if (k.Bv[i] != 0.0 && k.Cv[j] != 0.0)
@@ -744,13 +754,8 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
                         if (x != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[i], k.loc[j], x);
                     }
                 }
-                for (int d = 0; ranked && d < 3; d++) { /* the terms Bf_d dT_d^T */
-                    for (long i = 0; i < nloc; i++)
-                        if (k.Bf[3 * i + d] != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[i], 2 * nterm, k.Bf[3 * i + d]);
-                    for (long j = 0; j < nloc; j++)
-                        if (k.Rt[3 * j + d] != 0.0) ok &= emit(&nt, cap, Ti, Tj, Tv, k.loc[j], 2 * nterm + 1, k.Rt[3 * j + d]);
-                    nterm++;
-                }
+                for (int d = 0; ranked && d < 3; d++) /* the terms Bf_d dT_d^T */
+                    ok &= emit_term(&nt, cap, Ti, Tj, Tv, nloc, k.loc, 1.0, k.Bf + d, k.Rt + d, 3, nterm++);
             }
             for (long i = 0; i < nloc; i++) k.pos[k.loc[i]] = -1;
         }
