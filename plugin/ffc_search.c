@@ -4,13 +4,17 @@
 #include "ffc.h"
 #include "ffc_internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #define LEAF 2          /* facets per leaf (2 measured fastest of 2, 4, 8) */
-#define STACK 256       /* traversal stack (depth <= 64 levels, 2 per level) */
+#define STACK 256
+
+typedef float v4f __attribute__((vector_size(16))); /* four boxes at once (GCC, Clang) */
+typedef int v4i __attribute__((vector_size(16)));       /* traversal stack (depth <= 64 levels, 2 per level) */
 
 struct ffc_tree {
     int nn;            /* nodes per facet: 3 or 6 */
@@ -23,6 +27,13 @@ struct ffc_tree {
     double *hf;        /* [nf] longest edge of each facet, by facet (length) */
     double *fx;        /* [nf*nn*3] facet node positions, tree order (length) */
     double *box;       /* [2P*6] node boxes lo[3], hi[3] (length) */
+    float *qb;         /* [P/2*24] the traversal's boxes: at 24 i those of node i's four grandchildren
+                          4i..4i+3, lo x, y, z then hi x, y, z, four values each, relative to qo,
+                          widened (see fill_quad_boxes; NULL when P < 4) */
+    int depth;         /* log2 P: the leaves' level (the root's is 0) */
+    double qo[3];      /* qb's origin: the root box's centre (length) */
+    double qscale;     /* the root box's largest half-width (length) */
+    int qfast;         /* 1: qb usable (qscale between 1e-30 and 1e30) */
     long *nbr;         /* [nf*3] facet across edge e (vertices e, e+1), -1 on the rim */
     unsigned char *vrim; /* [nf*3] 1 when vertex a lies on the rim of the surface */
     double hmax;       /* longest facet edge (length) */
@@ -104,6 +115,37 @@ static int radix_sort(long n, uint64_t *key, long *idx)
     return FFC_OK;
 }
 
+/* The traversal's boxes (qb) from the double ones, relative to the root
+ * box's centre qo, widened by 8 FLT_EPSILON qscale and rounded to float:
+ * for a query point with |p_i - qo_i| <= 2 qscale the float distance (the
+ * box and p - qo rounded, their differences rounded: each error below
+ * FLT_EPSILON qscale) is then below the exact distance to the double box,
+ * so that the float test never prunes a facet the double test keeps. */
+static void fill_quad_boxes(ffc_tree *t)
+{
+    const double *r = t->box + 6;
+    double sc = 0.0;
+    for (int k = 0; k < 3; k++) {
+        t->qo[k] = 0.5 * (r[k] + r[3 + k]);
+        sc = fmax(sc, 0.5 * (r[3 + k] - r[k]));
+    }
+    if (!isfinite(sc)) sc = 0.0;
+    t->qscale = sc;
+    t->qfast = t->qb && sc >= 1e-30 && sc <= 1e30;
+    if (!t->qfast) return;
+    const double pad = 8.0 * FLT_EPSILON * sc;
+    for (long i = 1; i < t->P / 2; i++) {
+        float *g = t->qb + 24 * i;
+        for (int j = 0; j < 4; j++) {
+            const double *b = t->box + 6 * (4 * i + j);
+            for (int k = 0; k < 3; k++) {
+                g[4 * k + j] = (float)(b[k] - t->qo[k] - pad);
+                g[12 + 4 * k + j] = (float)(b[3 + k] - t->qo[k] + pad);
+            }
+        }
+    }
+}
+
 /* Facet coordinates into tree order and all boxes from the leaves up. */
 static int fill_geometry(ffc_tree *t, const double x[])
 {
@@ -142,6 +184,7 @@ static int fill_geometry(ffc_tree *t, const double x[])
             b[3 + k] = fmax(l[3 + k], r[3 + k]);
         }
     }
+    fill_quad_boxes(t);
     return FFC_OK;
 }
 
@@ -199,6 +242,7 @@ void ffc_tree_free(ffc_tree *t)
     free(t->hf);
     free(t->fx);
     free(t->box);
+    free(t->qb);
     free(t->nbr);
     free(t->vrim);
     free(t);
@@ -209,7 +253,7 @@ long ffc_tree_bytes(const ffc_tree *t)
     if (!t) return 0;
     return (long)sizeof *t + t->nf * (long)(t->nn * sizeof(long) + 2 * sizeof(long) + sizeof(double) +
                                             t->nn * 3 * sizeof(double) + 3 * sizeof(long) + 3) +
-           2 * t->P * 6 * (long)sizeof(double);
+           2 * t->P * 6 * (long)sizeof(double) + (t->P >= 4 ? t->P / 2 * 24 * (long)sizeof(float) : 0);
 }
 
 int ffc_tree_build(int nn, long nf, const long F[], long nv, const double x[],
@@ -232,17 +276,19 @@ int ffc_tree_build(int nn, long nf, const long F[], long nv, const double x[],
     long L = (nf + LEAF - 1) / LEAF, P = 1;
     while (P < L) P *= 2;
     t->P = P;
+    while ((1L << t->depth) < P) t->depth++;
     t->F = malloc((size_t)nf * nn * sizeof *t->F);
     t->slot2f = malloc((size_t)nf * sizeof *t->slot2f);
     t->hf = malloc((size_t)nf * sizeof *t->hf);
     t->f2slot = malloc((size_t)nf * sizeof *t->f2slot);
     t->fx = malloc((size_t)nf * nn * 3 * sizeof *t->fx);
     t->box = malloc((size_t)2 * P * 6 * sizeof *t->box);
+    t->qb = P >= 4 ? malloc((size_t)P / 2 * 24 * sizeof *t->qb) : NULL;
     t->nbr = malloc((size_t)nf * 3 * sizeof *t->nbr);
     t->vrim = malloc((size_t)nf * 3);
     uint64_t *key = malloc((size_t)nf * sizeof *key);
     int st = FFC_ERR_MEMORY;
-    if (!t->F || !t->slot2f || !t->hf || !t->f2slot || !t->fx || !t->box || !t->nbr || !t->vrim || !key) goto fail;
+    if (!t->F || !t->slot2f || !t->hf || !t->f2slot || !t->fx || !t->box || (P >= 4 && !t->qb) || !t->nbr || !t->vrim || !key) goto fail;
     memcpy(t->F, F, (size_t)nf * nn * sizeof *F);
 
     /* Morton keys of the facet centroids */
@@ -369,8 +415,6 @@ static double tie_tol2(const ffc_tree *t, double d2)
 static void consider(const ffc_tree *t, long s, const double p[3], cand_t *best)
 {
     cand_t c;
-    c.f = t->slot2f[s];
-    c.slot = s;
     const double *X = t->fx + s * t->nn * 3;
     if (t->nn == 3) {
         c.d2 = tri_d2(X, X + 3, X + 6, p, &c.inside);
@@ -380,8 +424,14 @@ static void consider(const ffc_tree *t, long s, const double p[3], cand_t *best)
         c.d2 = pr.dist * pr.dist;
         c.inside = pr.where == FFC_FOOT_INSIDE;
     }
+    if (c.d2 > best->lim2) return; /* (cand_better would say no) */
+    c.f = t->slot2f[s];
+    c.slot = s;
     if (cand_better(&c, best, best->lim2 - best->d2)) { *best = c; best->lim2 = c.d2 + tie_tol2(t, c.d2); }
 }
+
+/* the level of tree node i (the root, 1, is at 0) */
+static int level(long i) { return 63 - __builtin_clzll((unsigned long long)i); }
 
 /* Closest facet within rmax.  A warm start (a facet near the previous
  * query's partner, or -1) and its edge neighbours tighten the bound before
@@ -389,19 +439,29 @@ static void consider(const ffc_tree *t, long s, const double p[3], cand_t *best)
 static void nearest(const ffc_tree *t, const double p[3], double rmax, long warm, cand_t *best)
 {
     cand_init(best, rmax);
+    long seen[4] = {-1, -1, -1, -1}; /* the slots considered by the warm start */
     if (warm >= 0) {
-        consider(t, t->f2slot[warm], p, best);
+        seen[0] = t->f2slot[warm];
         for (int e = 0; e < 3; e++) {
             long g = t->nbr[warm * 3 + e];
-            if (g >= 0) consider(t, t->f2slot[g], p, best);
+            if (g >= 0) seen[e + 1] = t->f2slot[g];
         }
+        for (int e = 0; e < 4; e++)
+            if (seen[e] >= 0) consider(t, seen[e], p, best);
     }
-    /* stack of (node, squared box distance): each box is measured once */
+    /* stack of (node, squared box distance, a lower bound): each box is
+     * measured once.  A node at an even number of levels above the leaves
+     * tests its four grandchildren's float boxes at once (qb) when p is
+     * within their range; the root, when that number is odd, tests its two
+     * children's double boxes (so do all nodes when qb is not usable) */
     long stack[STACK];
     double sd2[STACK];
     int sp = 0;
     stack[sp] = 1;
     sd2[sp++] = box_d2(t->box + 6, p);
+    const int quad = t->qfast && fabs(p[0] - t->qo[0]) <= 2.0 * t->qscale &&
+                     fabs(p[1] - t->qo[1]) <= 2.0 * t->qscale && fabs(p[2] - t->qo[2]) <= 2.0 * t->qscale;
+    const float pf[3] = {(float)(p[0] - t->qo[0]), (float)(p[1] - t->qo[1]), (float)(p[2] - t->qo[2])};
     while (sp > 0) {
         --sp;
         const long i = stack[sp];
@@ -409,7 +469,36 @@ static void nearest(const ffc_tree *t, const double p[3], double rmax, long warm
         if (sd2[sp] > lim) continue;
         if (i >= t->P) {
             long j = i - t->P;
-            for (long s = j * LEAF; s < (j + 1) * LEAF && s < t->nf; s++) consider(t, s, p, best);
+            for (long s = j * LEAF; s < (j + 1) * LEAF && s < t->nf; s++)
+                if (s != seen[0] && s != seen[1] && s != seen[2] && s != seen[3]) consider(t, s, p, best);
+            continue;
+        }
+        if (quad && i < t->P / 2 && !((t->depth - level(i)) & 1)) {
+            const float *g = t->qb + 24 * i;
+            v4f lo[3], hi[3], d = {0.0f, 0.0f, 0.0f, 0.0f};
+            memcpy(lo, g, sizeof lo);
+            memcpy(hi, g + 12, sizeof hi);
+            for (int k = 0; k < 3; k++) {
+                const v4f a = lo[k] - pf[k], c = pf[k] - hi[k];
+                const v4i ge = a > c;
+                const v4f m = (v4f)(((v4i)a & ge) | ((v4i)c & ~ge)), e = (v4f)((v4i)m & (m > 0.0f));
+                d += e * e;
+            }
+            /* the float sums carry a relative error below 1e-6: 1 - 1e-5
+             * keeps them lower bounds */
+            long ord[4];
+            double od[4];
+            int no = 0;
+            for (int j = 0; j < 4; j++) {
+                const double dj = (double)d[j] * (1.0 - 1e-5);
+                if (dj > lim) continue;
+                int k = no++;
+                for (; k > 0 && od[k - 1] < dj; k--) { ord[k] = ord[k - 1]; od[k] = od[k - 1]; }
+                ord[k] = 4 * i + j;
+                od[k] = dj;
+            }
+            /* farthest pushed first: the nearest is visited first */
+            for (int k = 0; k < no; k++) { stack[sp] = ord[k]; sd2[sp++] = od[k]; }
             continue;
         }
         const long l = 2 * i, r = l + 1;

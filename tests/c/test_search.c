@@ -3,6 +3,7 @@
  * non-matching surfaces; rigid-motion invariance; capture and footprint. */
 #include "ffc_test.h"
 
+#include <float.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -344,6 +345,72 @@ static void test_refit(void **state)
     free(A); surf_free(&m); surf_free(&s);
 }
 
+/* Far from the origin (coordinates 1e6, facets 1e-3: float coordinates
+ * would be 0.06 apart) and on both parities of the tree's depth: the
+ * traversal's float boxes, taken relative to the tree's centre, prune
+ * nothing the exact test keeps; query points beyond twice the tree's
+ * half-width (the exact boxes' path) too. */
+static void test_far_offset(void **state)
+{
+    (void)state;
+    const double off[3] = {1e6, -1e6, 1e6};
+    const int sizes[2] = {7, 9}; /* 49 and 81 leaves: depth 6 and 7 */
+    for (int c = 0; c < 2; c++) {
+        const int n = sizes[c];
+        surf_t m = make_grid(3, n, n, 0, 0, 1e-3, 1e-3, z_flat, 0.3, 1, 70 + c);
+        surf_t s = make_grid(3, n + 2, n + 1, 0, 0, 1e-3, 1e-3, z_flat, 0.3, 0, 80 + c);
+        uint64_t seed = 90 + c;
+        for (long i = 0; i < m.nv; i++) {
+            m.x[3 * i + 2] = 1e-4 * sin(5e3 * m.x[3 * i]) * cos(4e3 * m.x[3 * i + 1]);
+            for (int k = 0; k < 3; k++) m.x[3 * i + k] += off[k];
+        }
+        for (long i = 0; i < s.nv; i++) {
+            s.x[3 * i + 2] = test_rand(&seed, -1e-4, 1e-4);
+            for (int k = 0; k < 3; k++) s.x[3 * i + k] += off[k];
+        }
+        ffc_search_opts o = ffc_search_defaults();
+        ffc_tree *t;
+        assert_int_equal(ffc_tree_build(3, m.nf, m.F, m.nv, m.x, &t), FFC_OK);
+        /* the same links as the unpruned loop, bit for bit, and distances
+         * within round-off of the independent brute force (the coordinates'
+         * own round-off, 2.2e-10 here, ten times) */
+        const long nl = s.nf * 3;
+        ffc_link *A = malloc(nl * sizeof *A), *B = malloc(nl * sizeof *B);
+        const int found = ffc_search(t, 3, s.nf, s.F, s.nv, s.x, 2, &o, nl, A);
+        assert_true(found > nl / 2);
+        assert_int_equal(ffc_search_brute(t, 3, s.nf, s.F, s.nv, s.x, 2, &o, nl, B), found);
+        for (long k = 0; k < nl; k++) {
+            assert_int_equal(A[k].mf, B[k].mf);
+            if (A[k].mf < 0) continue;
+            assert_true(A[k].gap == B[k].gap);
+            double p[3];
+            slave_point(&s, &A[k], p);
+            long bf;
+            ffc_proj bpr;
+            double X[3][3];
+            for (int a = 0; a < 3; a++)
+                for (int i = 0; i < 3; i++) X[a][i] = m.x[3 * m.F[A[k].mf * 3 + a] + i];
+            ffc_proj pr;
+            assert_true(ffc_project(3, (const double(*)[3])X, p, &pr) >= 0);
+            assert_close(pr.dist, brute(&m, p, &bf, &bpr), 10 * DBL_EPSILON * 1e6);
+        }
+        free(A);
+        free(B);
+        /* points beyond twice the tree's half-width */
+        for (int k = 0; k < 4; k++) {
+            const double P[3] = {off[0] + 5e-4 * k, off[1] - 1e-3 * k, off[2] + 2e-3 * (k + 1)};
+            long f, bf;
+            ffc_proj pr, bpr;
+            assert_int_equal(ffc_tree_nearest(t, P, 1.0, &f, &pr), FFC_OK);
+            assert_true(f >= 0);
+            assert_close(pr.dist, brute(&m, P, &bf, &bpr), 10 * DBL_EPSILON * 1e6);
+        }
+        ffc_tree_free(t);
+        surf_free(&m);
+        surf_free(&s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -353,6 +420,7 @@ int main(void)
         cmocka_unit_test(test_rigid_motion),
         cmocka_unit_test(test_capture_footprint),
         cmocka_unit_test(test_refit),
+        cmocka_unit_test(test_far_offset),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
