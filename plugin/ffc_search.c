@@ -436,10 +436,10 @@ static int level(long i) { return 63 - __builtin_clzll((unsigned long long)i); }
 /* Closest facet within rmax.  A warm start (a facet near the previous
  * query's partner, or -1) and its edge neighbours tighten the bound before
  * the traversal; the result does not depend on it. */
-static void nearest(const ffc_tree *t, const double p[3], double rmax, long warm, cand_t *best)
+static void warm_start(const ffc_tree *t, const double p[3], double rmax, long warm, cand_t *best, long seen[4])
 {
     cand_init(best, rmax);
-    long seen[4] = {-1, -1, -1, -1}; /* the slots considered by the warm start */
+    seen[0] = seen[1] = seen[2] = seen[3] = -1;
     if (warm >= 0) {
         seen[0] = t->f2slot[warm];
         for (int e = 0; e < 3; e++) {
@@ -449,6 +449,43 @@ static void nearest(const ffc_tree *t, const double p[3], double rmax, long warm
         for (int e = 0; e < 4; e++)
             if (seen[e] >= 0) consider(t, seen[e], p, best);
     }
+}
+
+/* the facets of leaf j but the warm start's */
+static void consider_leaf(const ffc_tree *t, long j, const double p[3], cand_t *best, const long seen[4])
+{
+    for (long s = j * LEAF; s < (j + 1) * LEAF && s < t->nf; s++)
+        if (s != seen[0] && s != seen[1] && s != seen[2] && s != seen[3]) consider(t, s, p, best);
+}
+
+/* the float distances (squared) of pf to four boxes lo[k][0..3], hi[k][0..3] */
+static v4f dist4(const float *lo, const float *hi, long stride, const float pf[3])
+{
+    v4f d = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (int k = 0; k < 3; k++) {
+        v4f l, h;
+        memcpy(&l, lo + k * stride, sizeof l);
+        memcpy(&h, hi + k * stride, sizeof h);
+        const v4f a = l - pf[k], c = pf[k] - h;
+        const v4i ge = a > c;
+        const v4f m = (v4f)(((v4i)a & ge) | ((v4i)c & ~ge)), e = (v4f)((v4i)m & (m > 0.0f));
+        d += e * e;
+    }
+    return d;
+}
+
+/* p within the float boxes' range (see fill_quad_boxes), and p - qo in float */
+static int quad_point(const ffc_tree *t, const double p[3], float pf[3])
+{
+    for (int k = 0; k < 3; k++) pf[k] = (float)(p[k] - t->qo[k]);
+    return t->qfast && fabs(p[0] - t->qo[0]) <= 2.0 * t->qscale && fabs(p[1] - t->qo[1]) <= 2.0 * t->qscale &&
+           fabs(p[2] - t->qo[2]) <= 2.0 * t->qscale;
+}
+
+static void nearest(const ffc_tree *t, const double p[3], double rmax, long warm, cand_t *best)
+{
+    long seen[4]; /* the slots considered by the warm start */
+    warm_start(t, p, rmax, warm, best, seen);
     /* stack of (node, squared box distance, a lower bound): each box is
      * measured once.  A node at an even number of levels above the leaves
      * tests its four grandchildren's float boxes at once (qb) when p is
@@ -459,31 +496,20 @@ static void nearest(const ffc_tree *t, const double p[3], double rmax, long warm
     int sp = 0;
     stack[sp] = 1;
     sd2[sp++] = box_d2(t->box + 6, p);
-    const int quad = t->qfast && fabs(p[0] - t->qo[0]) <= 2.0 * t->qscale &&
-                     fabs(p[1] - t->qo[1]) <= 2.0 * t->qscale && fabs(p[2] - t->qo[2]) <= 2.0 * t->qscale;
-    const float pf[3] = {(float)(p[0] - t->qo[0]), (float)(p[1] - t->qo[1]), (float)(p[2] - t->qo[2])};
+    float pf[3];
+    const int quad = quad_point(t, p, pf);
     while (sp > 0) {
         --sp;
         const long i = stack[sp];
         const double lim = best->lim2;
         if (sd2[sp] > lim) continue;
         if (i >= t->P) {
-            long j = i - t->P;
-            for (long s = j * LEAF; s < (j + 1) * LEAF && s < t->nf; s++)
-                if (s != seen[0] && s != seen[1] && s != seen[2] && s != seen[3]) consider(t, s, p, best);
+            consider_leaf(t, i - t->P, p, best, seen);
             continue;
         }
         if (quad && i < t->P / 2 && !((t->depth - level(i)) & 1)) {
             const float *g = t->qb + 24 * i;
-            v4f lo[3], hi[3], d = {0.0f, 0.0f, 0.0f, 0.0f};
-            memcpy(lo, g, sizeof lo);
-            memcpy(hi, g + 12, sizeof hi);
-            for (int k = 0; k < 3; k++) {
-                const v4f a = lo[k] - pf[k], c = pf[k] - hi[k];
-                const v4i ge = a > c;
-                const v4f m = (v4f)(((v4i)a & ge) | ((v4i)c & ~ge)), e = (v4f)((v4i)m & (m > 0.0f));
-                d += e * e;
-            }
+            const v4f d = dist4(g, g + 12, 4, pf);
             /* the float sums carry a relative error below 1e-6: 1 - 1e-5
              * keeps them lower bounds */
             long ord[4];
@@ -513,6 +539,100 @@ static void nearest(const ffc_tree *t, const double p[3], double rmax, long warm
         }
     }
     if (best->f >= 0 && best->d2 > rmax * rmax) best->f = -1;
+}
+
+/* A batch of nearby query points shares one traversal: the leaves whose
+ * boxes meet the points' bounding box widened by r0 are collected once, and
+ * each point then tests only those (four float boxes at once).  A point
+ * whose final pruning radius (sqrt lim2) is within r0 has every facet that
+ * could beat its answer in a collected leaf, so its answer is the one the
+ * traversal gives; any other point is searched alone. */
+enum { BATCH = 16, BATCH_LEAVES = 512 };
+
+typedef struct {
+    long n;                          /* leaves collected (a multiple of 4, the rest empty boxes) */
+    long leaf[BATCH_LEAVES];         /* leaf j (tree node P + j), -1 for an empty box */
+    float lo[3][BATCH_LEAVES];       /* their float boxes (see fill_quad_boxes) */
+    float hi[3][BATCH_LEAVES];
+} batch_t;
+
+/* The leaves whose boxes meet [rlo, rhi] into b: 1, or 0 when the region is
+ * beyond the float boxes' range or meets more than BATCH_LEAVES leaves */
+static int collect(const ffc_tree *t, const double rlo[3], const double rhi[3], batch_t *b)
+{
+    b->n = 0;
+    if (!t->qfast) return 0;
+    float flo[3], fhi[3];
+    const double pad = 8.0 * FLT_EPSILON * t->qscale;
+    for (int k = 0; k < 3; k++) {
+        if (!(fabs(rlo[k] - t->qo[k]) <= 2.0 * t->qscale && fabs(rhi[k] - t->qo[k]) <= 2.0 * t->qscale)) return 0;
+        flo[k] = (float)(rlo[k] - t->qo[k] - pad);
+        fhi[k] = (float)(rhi[k] - t->qo[k] + pad);
+    }
+    long stack[STACK];
+    int sp = 0;
+    const double *r = t->box + 6;
+    if (r[0] <= rhi[0] && r[1] <= rhi[1] && r[2] <= rhi[2] && r[3] >= rlo[0] && r[4] >= rlo[1] && r[5] >= rlo[2])
+        stack[sp++] = 1;
+    while (sp > 0) {
+        const long i = stack[--sp];
+        if (i >= t->P) {
+            if (b->n == BATCH_LEAVES) return 0;
+            const float *g = t->qb + 24 * (i / 4);
+            const long c = b->n++;
+            b->leaf[c] = i - t->P;
+            for (int k = 0; k < 3; k++) {
+                b->lo[k][c] = g[4 * k + i % 4];
+                b->hi[k][c] = g[12 + 4 * k + i % 4];
+            }
+            continue;
+        }
+        if (i < t->P / 2 && !((t->depth - level(i)) & 1)) {
+            const float *g = t->qb + 24 * i;
+            v4i in = {-1, -1, -1, -1};
+            for (int k = 0; k < 3; k++) {
+                v4f l, h;
+                memcpy(&l, g + 4 * k, sizeof l);
+                memcpy(&h, g + 12 + 4 * k, sizeof h);
+                in &= (l <= fhi[k]) & (h >= flo[k]);
+            }
+            for (int j = 3; j >= 0; j--)
+                if (in[j]) stack[sp++] = 4 * i + j;
+            continue;
+        }
+        for (long c = 2 * i + 1; c >= 2 * i; c--) {
+            const double *q = t->box + 6 * c;
+            if (q[0] <= rhi[0] && q[1] <= rhi[1] && q[2] <= rhi[2] && q[3] >= rlo[0] && q[4] >= rlo[1] &&
+                q[5] >= rlo[2])
+                stack[sp++] = c;
+        }
+    }
+    while (b->n % 4) { /* empty boxes up to a multiple of 4 */
+        const long c = b->n++;
+        b->leaf[c] = -1;
+        for (int k = 0; k < 3; k++) { b->lo[k][c] = INFINITY; b->hi[k][c] = -INFINITY; }
+    }
+    return 1;
+}
+
+/* The closest facet of p among the collected leaves, after the warm
+ * start: 1 when its pruning radius is within r0 (the answer), else 0 */
+static int nearest_in(const ffc_tree *t, const batch_t *b, double r0, const double p[3], double rmax, long warm,
+                      cand_t *best)
+{
+    long seen[4];
+    warm_start(t, p, rmax, warm, best, seen);
+    float pf[3];
+    if (!quad_point(t, p, pf) || !(best->lim2 <= r0 * r0)) return 0;
+    for (long c = 0; c < b->n; c += 4) {
+        const v4f d = dist4(&b->lo[0][c], &b->hi[0][c], BATCH_LEAVES, pf);
+        for (int j = 0; j < 4; j++)
+            if ((double)d[j] * (1.0 - 1e-5) <= best->lim2 && b->leaf[c + j] >= 0)
+                consider_leaf(t, b->leaf[c + j], p, best, seen);
+    }
+    if (!(best->lim2 <= r0 * r0)) return 0;
+    if (best->f >= 0 && best->d2 > rmax * rmax) best->f = -1;
+    return 1;
 }
 
 /* full projection onto the chosen facet */
@@ -585,6 +705,44 @@ static void make_link(const ffc_tree *t, const cand_t *c, const double p[3],
     for (int i = 0; i < 3; i++) lk->n[i] = pr->n[i];
 }
 
+/* The links of a batch of nb points bp (links[bl[k]]), searched together
+ * when *r0 > 0 (see collect); *warm and *r0 carried to the next batch.
+ * Returns how many have a partner. */
+static long query_batch(const ffc_tree *t, batch_t *B, long nb, const double bp[][3], const long bl[],
+                        double rmax, const ffc_search_opts *o, ffc_link links[], long *warm, double *r0)
+{
+    int shared = 0;
+    if (*r0 > 0.0 && B) {
+        double rlo[3], rhi[3];
+        for (int i = 0; i < 3; i++) {
+            rlo[i] = rhi[i] = bp[0][i];
+            for (long k = 1; k < nb; k++) {
+                rlo[i] = fmin(rlo[i], bp[k][i]);
+                rhi[i] = fmax(rhi[i], bp[k][i]);
+            }
+            rlo[i] -= *r0;
+            rhi[i] += *r0;
+        }
+        shared = collect(t, rlo, rhi, B);
+    }
+    long found = 0;
+    double rnext = 0.0;
+    for (long k = 0; k < nb; k++) {
+        cand_t best;
+        if (!shared || !nearest_in(t, B, *r0, bp[k], rmax, *warm, &best)) nearest(t, bp[k], rmax, *warm, &best);
+        if (best.f >= 0) {
+            *warm = best.f;
+            rnext = fmax(rnext, sqrt(best.lim2));
+        }
+        make_link(t, &best, bp[k], o, links + bl[k]);
+        found += links[bl[k]].mf >= 0;
+    }
+    /* twice the largest pruning radius of this batch (measured fastest
+     * of 1.5, 2 and 3, with 8, 16 and 32 points a batch) */
+    *r0 = 2.0 * rnext;
+    return found;
+}
+
 static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], long nvs,
                          const double xs[], int qdeg, const ffc_search_opts *o, long cap,
                          ffc_link links[], int brute)
@@ -604,38 +762,46 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
     for (long k = 0; k < nfs * nns; k++)
         if (Fs[k] < 0 || Fs[k] >= nvs) return FFC_ERR_INDEX;
     const double rmax = fmax(o->capture_abs, o->capture_rel * t->hmax);
-    long found = 0, warm = -1;
+    long found = 0, warm = -1, nb = 0;
+    double bp[BATCH][3]; /* the batch's points, */
+    long bl[BATCH];      /* and their links */
+    double r0 = 0.0;     /* the batch radius (0: none yet) */
+    batch_t *B = brute ? NULL : malloc(sizeof *B); /* (without it, one traversal per point) */
     for (long f = 0; f < nfs; f++) {
         double X[FFC_MAXNODES][3];
         for (int a = 0; a < nns; a++)
             for (int i = 0; i < 3; i++) {
                 X[a][i] = xs[3 * Fs[f * nns + a] + i];
-                if (!isfinite(X[a][i])) return FFC_ERR_NONFINITE;
+                if (!isfinite(X[a][i])) { free(B); return FFC_ERR_NONFINITE; }
             }
         for (int q = 0; q < nq; q++) {
             double N[FFC_MAXNODES], p[3] = {0, 0, 0};
             ffc_shape(nns, qxi[q], N, NULL);
             for (int a = 0; a < nns; a++)
                 for (int i = 0; i < 3; i++) p[i] += N[a] * X[a][i];
-            cand_t best;
-            if (brute) {
-                cand_init(&best, rmax);
-                /* every facet, no pruning */
-                for (long s = 0; s < t->nf; s++) consider(t, s, p, &best);
-                if (best.f >= 0 && best.d2 > rmax * rmax) best.f = -1;
-            } else {
-                nearest(t, p, rmax, warm, &best);
-                if (best.f >= 0) warm = best.f;
-            }
             ffc_link *lk = links + f * nq + q;
             lk->sf = f;
             lk->q = q;
             lk->xs[0] = qxi[q][0];
             lk->xs[1] = qxi[q][1];
-            make_link(t, &best, p, o, lk);
-            if (lk->mf >= 0) found++;
+            if (brute) {
+                cand_t best;
+                cand_init(&best, rmax);
+                /* every facet, no pruning */
+                for (long s = 0; s < t->nf; s++) consider(t, s, p, &best);
+                if (best.f >= 0 && best.d2 > rmax * rmax) best.f = -1;
+                make_link(t, &best, p, o, lk);
+                found += lk->mf >= 0;
+                continue;
+            }
+            memcpy(bp[nb], p, sizeof p);
+            bl[nb++] = f * nq + q;
+            if (nb < BATCH && !(f == nfs - 1 && q == nq - 1)) continue;
+            found += query_batch(t, B, nb, (const double(*)[3])bp, bl, rmax, o, links, &warm, &r0);
+            nb = 0;
         }
     }
+    free(B);
     return found <= 2147483647L ? (int)found : FFC_ERR_SIZE;
 }
 
@@ -650,21 +816,24 @@ int ffc_search_points(const ffc_tree *t, long np, const double p[],
         isinf(o->capture_rel) || isinf(o->capture_abs))
         return FFC_ERR_VALUE;
     const double rmax = fmax(o->capture_abs, o->capture_rel * t->hmax);
+    for (long k = 0; k < 3 * np; k++)
+        if (!isfinite(p[k])) return FFC_ERR_NONFINITE;
     long found = 0, warm = -1;
-    for (long k = 0; k < np; k++) {
-        const double *x = p + 3 * k;
-        for (int i = 0; i < 3; i++)
-            if (!isfinite(x[i])) return FFC_ERR_NONFINITE;
-        cand_t best;
-        nearest(t, x, rmax, warm, &best);
-        if (best.f >= 0) warm = best.f;
-        ffc_link *lk = links + k;
-        lk->sf = k;
-        lk->q = 0;
-        lk->xs[0] = lk->xs[1] = 0.0;
-        make_link(t, &best, x, o, lk);
-        if (lk->mf >= 0) found++;
+    long bl[BATCH];
+    double r0 = 0.0;
+    batch_t *B = malloc(sizeof *B); /* (without it, one traversal per point) */
+    for (long k0 = 0; k0 < np; k0 += BATCH) {
+        const long nb = np - k0 < BATCH ? np - k0 : BATCH;
+        for (long k = 0; k < nb; k++) {
+            ffc_link *lk = links + k0 + k;
+            lk->sf = k0 + k;
+            lk->q = 0;
+            lk->xs[0] = lk->xs[1] = 0.0;
+            bl[k] = k0 + k;
+        }
+        found += query_batch(t, B, nb, (const double(*)[3])(p + 3 * k0), bl, rmax, o, links, &warm, &r0);
     }
+    free(B);
     return found <= 2147483647L ? (int)found : FFC_ERR_SIZE;
 }
 

@@ -347,9 +347,10 @@ static void test_refit(void **state)
 
 /* Far from the origin (coordinates 1e6, facets 1e-3: float coordinates
  * would be 0.06 apart) and on both parities of the tree's depth: the
- * traversal's float boxes, taken relative to the tree's centre, prune
- * nothing the exact test keeps; query points beyond twice the tree's
- * half-width (the exact boxes' path) too. */
+ * traversal's float boxes, taken relative to the tree's centre, and the
+ * batches of points that share one traversal, give the unpruned loop's
+ * links; query points beyond twice the tree's half-width (the exact boxes'
+ * path) too. */
 static void test_far_offset(void **state)
 {
     (void)state;
@@ -394,6 +395,18 @@ static void test_far_offset(void **state)
             assert_true(ffc_project(3, (const double(*)[3])X, p, &pr) >= 0);
             assert_close(pr.dist, brute(&m, p, &bf, &bpr), 10 * DBL_EPSILON * 1e6);
         }
+        /* the same points through ffc_search_points (searched in
+         * batches as well): the same partners and gaps */
+        double *P = malloc(nl * 3 * sizeof *P);
+        ffc_link *C = malloc(nl * sizeof *C);
+        for (long k = 0; k < nl; k++) slave_point(&s, &A[k], P + 3 * k);
+        assert_int_equal(ffc_search_points(t, nl, P, &o, C), found);
+        for (long k = 0; k < nl; k++) {
+            assert_int_equal(C[k].mf, A[k].mf);
+            assert_true(C[k].gap == A[k].gap);
+        }
+        free(P);
+        free(C);
         free(A);
         free(B);
         /* points beyond twice the tree's half-width */
