@@ -173,6 +173,8 @@ int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], 
          * motion, which the scene library's free-body step shortens; an
          * exactly zero pivot is refused (INFOG(1) = -10) */
         id->ICNTL(24) = 0;
+        id->ICNTL(10) = -2;      /* two steps of iterative refinement (UMFPACK does two by default): the
+                                    saddle matrices with tgv rows lost 1e-5 of a pressure without them */
         id->n = (MUMPS_INT)n;
         memcpy(x, b, (size_t)n * sizeof(double));
         id->rhs = x;
