@@ -920,6 +920,27 @@ long addPairL(const Named &nm, FFScene *const &C, long const &s, long const &m)
     return addPair(nm, C, &S, &M);
 }
 
+// a label on one side, an int[int] of labels on the other
+long addPairLA(const Named &nm, FFScene *const &C, long const &s, KN<long> *const &M)
+{
+    KN<long> S(1);
+    S[0] = s;
+    return addPair(nm, C, &S, M);
+}
+long addPairAL(const Named &nm, FFScene *const &C, KN<long> *const &S, long const &m)
+{
+    KN<long> M(1);
+    M[0] = m;
+    return addPair(nm, C, S, &M);
+}
+
+// ffcError(fn, what): stops the script with "fn: what" (an ExecError), for
+// the scene library's own argument checks
+long ffcErrorCall(string *const &fn, string *const &what)
+{
+    fail(fn ? *fn : std::string("?"), what ? *what : std::string());
+}
+
 // the pair index k (argument arg) of the scene; -1 allowed when all is set
 int need_pair_index(const char *fn, const SceneData &d, long k, bool all, const char *arg = "pair")
 {
@@ -970,6 +991,9 @@ double pairOption(const Named &, FFScene *const &C, long const &k, string *const
     if (n == "ftol") return o.ftol;
     if (n == "maxFlips") return o.max_flips;
     if (n == "scale") return o.scale;
+    if (n == "method")
+        fail(fn, "argument 'name': \"method\" is a string and ffcOption returns numbers: read it as ffcOption(C, k, \"nts\") "
+                 "(1: node-to-surface) and ffcOption(C, k, \"mortar\") (1: mortar), both 0 for the augmented Lagrangian");
     fail(fn, "argument 'name': \"" + n + "\" is not an option of a pair (mu, epsN, epsT, qdeg, nodal, crel, cabs, nts, mortar, dual, muD, gtol, ftol, "
                 "maxFlips, scale)");
 }
@@ -1719,6 +1743,9 @@ void init_scene()
     TheOperators->Add("<-", named<S, S, pmesh3>("ffcScene", scene_names, 2, sceneInit));
     Global.Add("ffcAddPair", "(", named<long, S, KN<long> *, KN<long> *>("ffcAddPair", pair_names, PO_N, addPair));
     Global.Add("ffcAddPair", "(", named<long, S, long, long>("ffcAddPair", pair_names, PO_N, addPairL));
+    Global.Add("ffcAddPair", "(", named<long, S, long, KN<long> *>("ffcAddPair", pair_names, PO_N, addPairLA));
+    Global.Add("ffcAddPair", "(", named<long, S, KN<long> *, long>("ffcAddPair", pair_names, PO_N, addPairAL));
+    Global.Add("ffcError", "(", new OneOperator2_<long, string *, string *>(ffcErrorCall));
     Global.Add("ffcSetPair", "(", named<long, S, long>("ffcSetPair", pair_names, PO_N, setPair));
     Global.Add("ffcOption", "(", named<double, S, long, string *>("ffcOption", nullptr, 0, pairOption));
     Global.Add("ffcPairs", "(", named<long, S>("ffcPairs", nullptr, 0, nPairs));
