@@ -25,11 +25,13 @@ struct ffc_tree {
     long *slot2f;      /* [nf] tree slot -> facet */
     long *f2slot;      /* [nf] facet -> tree slot */
     double *hf;        /* [nf] longest edge of each facet, by facet (length) */
+    unsigned char *degen; /* [nf] by slot: 1 for a linear facet ffc_project refuses (no area), which no
+                             query takes */
     double *fx;        /* [nf*nn*3] facet node positions, tree order (length) */
     double *box;       /* [2P*6] node boxes lo[3], hi[3] (length) */
     float *qb;         /* [P/2*24] the traversal's boxes: at 24 i those of node i's four grandchildren
-                          4i..4i+3, lo x, y, z then hi x, y, z, four values each, relative to qo,
-                          widened (see fill_quad_boxes; NULL when P < 4) */
+                          4i..4i+3, lo x, y, z then hi x, y, z, four values each, relative to qo in
+                          units of qscale, widened (see fill_quad_boxes; NULL when P < 4) */
     int depth;         /* log2 P: the leaves' level (the root's is 0) */
     double qo[3];      /* qb's origin: the root box's centre (length) */
     double qscale;     /* the root box's largest half-width (length) */
@@ -116,11 +118,14 @@ static int radix_sort(long n, uint64_t *key, long *idx)
 }
 
 /* The traversal's boxes (qb) from the double ones, relative to the root
- * box's centre qo, widened by 8 FLT_EPSILON qscale and rounded to float:
- * for a query point with |p_i - qo_i| <= 2 qscale the float distance (the
- * box and p - qo rounded, their differences rounded: each error below
- * FLT_EPSILON qscale) is then below the exact distance to the double box,
- * so that the float test never prunes a facet the double test keeps. */
+ * box's centre qo in units of its half-width qscale (values of order 1,
+ * whatever the model's units: no float overflow or underflow), widened by
+ * 8 FLT_EPSILON and rounded to float: for a query point with |p_i - qo_i|
+ * <= 2 qscale the float distance (the box and (p - qo) / qscale rounded,
+ * their differences rounded: each error below 4 FLT_EPSILON) is then below
+ * the exact distance to the double box, so that the float test, scaled
+ * back by qscale^2 (see lower_bound), never prunes a facet the double test
+ * keeps. */
 static void fill_quad_boxes(ffc_tree *t)
 {
     const double *r = t->box + 6;
@@ -133,17 +138,26 @@ static void fill_quad_boxes(ffc_tree *t)
     t->qscale = sc;
     t->qfast = t->qb && sc >= 1e-30 && sc <= 1e30;
     if (!t->qfast) return;
-    const double pad = 8.0 * FLT_EPSILON * sc;
+    const double pad = 8.0 * FLT_EPSILON, inv = 1.0 / sc;
     for (long i = 1; i < t->P / 2; i++) {
         float *g = t->qb + 24 * i;
         for (int j = 0; j < 4; j++) {
             const double *b = t->box + 6 * (4 * i + j);
             for (int k = 0; k < 3; k++) {
-                g[4 * k + j] = (float)(b[k] - t->qo[k] - pad);
-                g[12 + 4 * k + j] = (float)(b[3 + k] - t->qo[k] + pad);
+                g[4 * k + j] = (float)((b[k] - t->qo[k]) * inv - pad);
+                g[12 + 4 * k + j] = (float)((b[3 + k] - t->qo[k]) * inv + pad);
             }
         }
     }
+}
+
+/* A lower bound of the squared distance (length^2) from the float one d
+ * (units of qscale^2): the float sums carry a relative error below 1e-6,
+ * hence 1 - 1e-5, and near float underflow an absolute one below 1e-44,
+ * hence 1e-38 */
+static inline double lower_bound(const ffc_tree *t, float d)
+{
+    return ((double)d * (1.0 - 1e-5) - 1e-38) * t->qscale * t->qscale;
 }
 
 /* Facet coordinates into tree order and all boxes from the leaves up. */
@@ -162,6 +176,14 @@ static int fill_geometry(ffc_tree *t, const double x[])
             }
         double h = facet_h(nn, X);
         t->hf[f] = h;
+        if (nn == 3) { /* ffc_project's test of a linear facet's area */
+            double e1[3], e2[3], c[3];
+            for (int i = 0; i < 3; i++) { e1[i] = X[3 + i] - X[i]; e2[i] = X[6 + i] - X[i]; }
+            ffc__cross(e1, e2, c);
+            const double h2 = ffc__facet_size2((const double(*)[3])X);
+            t->degen[s] = !(ffc__dot(c, c) > FFC__DEGEN_REL * FFC__DEGEN_REL * h2 * h2);
+        } else
+            t->degen[s] = 0;
         if (h > t->hmax) t->hmax = h;
     }
     const long P = t->P;
@@ -240,6 +262,7 @@ void ffc_tree_free(ffc_tree *t)
     free(t->slot2f);
     free(t->f2slot);
     free(t->hf);
+    free(t->degen);
     free(t->fx);
     free(t->box);
     free(t->qb);
@@ -252,7 +275,7 @@ long ffc_tree_bytes(const ffc_tree *t)
 {
     if (!t) return 0;
     return (long)sizeof *t + t->nf * (long)(t->nn * sizeof(long) + 2 * sizeof(long) + sizeof(double) +
-                                            t->nn * 3 * sizeof(double) + 3 * sizeof(long) + 3) +
+                                            t->nn * 3 * sizeof(double) + 3 * sizeof(long) + 4) +
            2 * t->P * 6 * (long)sizeof(double) + (t->P >= 4 ? t->P / 2 * 24 * (long)sizeof(float) : 0);
 }
 
@@ -280,6 +303,7 @@ int ffc_tree_build(int nn, long nf, const long F[], long nv, const double x[],
     t->F = malloc((size_t)nf * nn * sizeof *t->F);
     t->slot2f = malloc((size_t)nf * sizeof *t->slot2f);
     t->hf = malloc((size_t)nf * sizeof *t->hf);
+    t->degen = malloc((size_t)nf);
     t->f2slot = malloc((size_t)nf * sizeof *t->f2slot);
     t->fx = malloc((size_t)nf * nn * 3 * sizeof *t->fx);
     t->box = malloc((size_t)2 * P * 6 * sizeof *t->box);
@@ -288,7 +312,7 @@ int ffc_tree_build(int nn, long nf, const long F[], long nv, const double x[],
     t->vrim = malloc((size_t)nf * 3);
     uint64_t *key = malloc((size_t)nf * sizeof *key);
     int st = FFC_ERR_MEMORY;
-    if (!t->F || !t->slot2f || !t->hf || !t->f2slot || !t->fx || !t->box || (P >= 4 && !t->qb) || !t->nbr || !t->vrim || !key) goto fail;
+    if (!t->F || !t->slot2f || !t->hf || !t->degen || !t->f2slot || !t->fx || !t->box || (P >= 4 && !t->qb) || !t->nbr || !t->vrim || !key) goto fail;
     memcpy(t->F, F, (size_t)nf * nn * sizeof *F);
 
     /* Morton keys of the facet centroids */
@@ -376,32 +400,37 @@ done:
     return ffc__dot(q, q);
 }
 
-/* A candidate partner and the rule that orders candidates: the smaller
- * distance; within round-off (ties at shared edges and vertices) an
- * interior foot, then the lower facet index. */
+/* Candidates and the rule that picks a partner among them: of the facets
+ * within rmax, those whose squared distance is within the tie tolerance of
+ * the smallest one (ties at shared edges and vertices, to round-off) form
+ * the window; the answer is the window's facet with an interior foot, then
+ * with the lower index.  The rule depends on the set of facets alone, not
+ * on the order they are met in (a pairwise "closer, or as close and
+ * better" is not transitive), so the traversal, the batches, the warm
+ * start and brute force give the same answer.  The window keeps its TIES
+ * smallest facets by (distance, index) (more facets tied to round-off at
+ * one point than that: the TIES closest compete). */
+enum { TIES = 16 };
 typedef struct {
-    long f, slot;    /* facet and its tree slot, f = -1 for none yet */
-    double d2;       /* squared distance (length^2) */
-    double lim2;     /* squared pruning radius: d2 plus the tie tolerance */
-    int inside;      /* the foot is interior */
+    long f, slot;    /* the answer (after cand_pick): facet and its tree slot, f = -1 for none */
+    double d2;       /* its squared distance (length^2) */
+    int inside;      /* its foot is interior */
+    double rmax2;    /* squared search radius (length^2) */
+    double dmin;     /* smallest squared distance met (length^2; INFINITY: none yet) */
+    double lim2;     /* squared pruning radius: dmin plus the tie tolerance, at most rmax2 */
+    int n;           /* facets in the window */
+    struct { long f, slot; double d2; int inside; } w[TIES]; /* the window */
 } cand_t;
 
 static void cand_init(cand_t *c, double rmax)
 {
-    c->f = -1;
-    c->slot = -1;
-    c->d2 = rmax * rmax;
-    c->lim2 = c->d2 * (1.0 + 1e-12);
+    c->f = c->slot = -1;
+    c->d2 = 0.0;
     c->inside = 0;
-}
-
-static int cand_better(const cand_t *a, const cand_t *b, double tol2)
-{
-    if (b->f < 0) return a->d2 <= b->d2;
-    if (a->d2 < b->d2 - tol2) return 1;
-    if (a->d2 > b->d2 + tol2) return 0;
-    if (a->inside != b->inside) return a->inside;
-    return a->f < b->f;
+    c->rmax2 = rmax * rmax;
+    c->dmin = INFINITY;
+    c->lim2 = c->rmax2;
+    c->n = 0;
 }
 
 /* tolerance of ties on squared distances: distances equal within
@@ -412,22 +441,60 @@ static double tie_tol2(const ffc_tree *t, double d2)
     return 2.0 * d * tol + tol * tol;
 }
 
+/* facet f (slot s) at squared distance d2 <= c->lim2 joins the window */
+static void cand_add(const ffc_tree *t, cand_t *c, long f, long s, double d2, int inside)
+{
+    if (d2 < c->dmin) {
+        c->dmin = d2;
+        c->lim2 = fmin(c->rmax2, d2 + tie_tol2(t, d2));
+        int k = 0;
+        for (int j = 0; j < c->n; j++)
+            if (c->w[j].d2 <= c->lim2) c->w[k++] = c->w[j];
+        c->n = k;
+    }
+    int j = c->n;
+    if (j == TIES) { /* full: the largest (distance, index) leaves, if larger than f's */
+        j = 0;
+        for (int k = 1; k < TIES; k++)
+            if (c->w[k].d2 > c->w[j].d2 || (c->w[k].d2 == c->w[j].d2 && c->w[k].f > c->w[j].f)) j = k;
+        if (c->w[j].d2 < d2 || (c->w[j].d2 == d2 && c->w[j].f < f)) return;
+    } else
+        c->n++;
+    c->w[j].f = f;
+    c->w[j].slot = s;
+    c->w[j].d2 = d2;
+    c->w[j].inside = inside;
+}
+
+/* the answer: the window's facet with an interior foot, then the lowest index */
+static void cand_pick(cand_t *c)
+{
+    c->f = c->slot = -1;
+    for (int j = 0; j < c->n; j++)
+        if (c->f < 0 || (c->w[j].inside && !c->inside) || (c->w[j].inside == c->inside && c->w[j].f < c->f)) {
+            c->f = c->w[j].f;
+            c->slot = c->w[j].slot;
+            c->d2 = c->w[j].d2;
+            c->inside = c->w[j].inside;
+        }
+}
+
 static void consider(const ffc_tree *t, long s, const double p[3], cand_t *best)
 {
-    cand_t c;
+    double d2;
+    int inside;
     const double *X = t->fx + s * t->nn * 3;
     if (t->nn == 3) {
-        c.d2 = tri_d2(X, X + 3, X + 6, p, &c.inside);
+        if (t->degen[s]) return;
+        d2 = tri_d2(X, X + 3, X + 6, p, &inside);
     } else {
         ffc_proj pr;
         if (ffc_project(6, (const double(*)[3])X, p, &pr) < 0) return;
-        c.d2 = pr.dist * pr.dist;
-        c.inside = pr.where == FFC_FOOT_INSIDE;
+        d2 = pr.dist * pr.dist;
+        inside = pr.where == FFC_FOOT_INSIDE;
     }
-    if (c.d2 > best->lim2) return; /* (cand_better would say no) */
-    c.f = t->slot2f[s];
-    c.slot = s;
-    if (cand_better(&c, best, best->lim2 - best->d2)) { *best = c; best->lim2 = c.d2 + tie_tol2(t, c.d2); }
+    if (!(d2 <= best->lim2)) return; /* (and NaN) */
+    cand_add(t, best, t->slot2f[s], s, d2, inside);
 }
 
 /* the level of tree node i (the root, 1, is at 0) */
@@ -477,7 +544,8 @@ static v4f dist4(const float *lo, const float *hi, long stride, const float pf[3
 /* p within the float boxes' range (see fill_quad_boxes), and p - qo in float */
 static int quad_point(const ffc_tree *t, const double p[3], float pf[3])
 {
-    for (int k = 0; k < 3; k++) pf[k] = (float)(p[k] - t->qo[k]);
+    const double inv = t->qscale > 0.0 ? 1.0 / t->qscale : 0.0;
+    for (int k = 0; k < 3; k++) pf[k] = (float)((p[k] - t->qo[k]) * inv);
     return t->qfast && fabs(p[0] - t->qo[0]) <= 2.0 * t->qscale && fabs(p[1] - t->qo[1]) <= 2.0 * t->qscale &&
            fabs(p[2] - t->qo[2]) <= 2.0 * t->qscale;
 }
@@ -510,13 +578,12 @@ static void nearest(const ffc_tree *t, const double p[3], double rmax, long warm
         if (quad && i < t->P / 2 && !((t->depth - level(i)) & 1)) {
             const float *g = t->qb + 24 * i;
             const v4f d = dist4(g, g + 12, 4, pf);
-            /* the float sums carry a relative error below 1e-6: 1 - 1e-5
-             * keeps them lower bounds */
+            /* (lower_bound: back in length^2, below the exact distance) */
             long ord[4];
             double od[4];
             int no = 0;
             for (int j = 0; j < 4; j++) {
-                const double dj = (double)d[j] * (1.0 - 1e-5);
+                const double dj = lower_bound(t, d[j]);
                 if (dj > lim) continue;
                 int k = no++;
                 for (; k > 0 && od[k - 1] < dj; k--) { ord[k] = ord[k - 1]; od[k] = od[k - 1]; }
@@ -538,7 +605,7 @@ static void nearest(const ffc_tree *t, const double p[3], double rmax, long warm
             if (dr <= lim) { stack[sp] = r; sd2[sp++] = dr; }
         }
     }
-    if (best->f >= 0 && best->d2 > rmax * rmax) best->f = -1;
+    cand_pick(best);
 }
 
 /* A batch of nearby query points shares one traversal: the leaves whose
@@ -563,11 +630,11 @@ static int collect(const ffc_tree *t, const double rlo[3], const double rhi[3], 
     b->n = 0;
     if (!t->qfast) return 0;
     float flo[3], fhi[3];
-    const double pad = 8.0 * FLT_EPSILON * t->qscale;
+    const double pad = 8.0 * FLT_EPSILON, inv = 1.0 / t->qscale;
     for (int k = 0; k < 3; k++) {
         if (!(fabs(rlo[k] - t->qo[k]) <= 2.0 * t->qscale && fabs(rhi[k] - t->qo[k]) <= 2.0 * t->qscale)) return 0;
-        flo[k] = (float)(rlo[k] - t->qo[k] - pad);
-        fhi[k] = (float)(rhi[k] - t->qo[k] + pad);
+        flo[k] = (float)((rlo[k] - t->qo[k]) * inv - pad);
+        fhi[k] = (float)((rhi[k] - t->qo[k]) * inv + pad);
     }
     long stack[STACK];
     int sp = 0;
@@ -627,11 +694,11 @@ static int nearest_in(const ffc_tree *t, const batch_t *b, double r0, const doub
     for (long c = 0; c < b->n; c += 4) {
         const v4f d = dist4(&b->lo[0][c], &b->hi[0][c], BATCH_LEAVES, pf);
         for (int j = 0; j < 4; j++)
-            if ((double)d[j] * (1.0 - 1e-5) <= best->lim2 && b->leaf[c + j] >= 0)
+            if (lower_bound(t, d[j]) <= best->lim2 && b->leaf[c + j] >= 0)
                 consider_leaf(t, b->leaf[c + j], p, best, seen);
     }
     if (!(best->lim2 <= r0 * r0)) return 0;
-    if (best->f >= 0 && best->d2 > rmax * rmax) best->f = -1;
+    cand_pick(best);
     return 1;
 }
 
@@ -789,7 +856,7 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
                 cand_init(&best, rmax);
                 /* every facet, no pruning */
                 for (long s = 0; s < t->nf; s++) consider(t, s, p, &best);
-                if (best.f >= 0 && best.d2 > rmax * rmax) best.f = -1;
+                cand_pick(&best);
                 make_link(t, &best, p, o, lk);
                 found += lk->mf >= 0;
                 continue;

@@ -1,6 +1,7 @@
 /* test_search.c: contact search against an independent brute force
  * (projection onto every master facet), on flat, curved and perturbed
- * non-matching surfaces; rigid-motion invariance; capture and footprint. */
+ * non-matching surfaces; rigid-motion invariance; capture and footprint;
+ * the tie rule independent of order, facets without area, extreme units. */
 #include "ffc_test.h"
 
 #include <float.h>
@@ -424,6 +425,173 @@ static void test_far_offset(void **state)
     }
 }
 
+/* the partner the documented rule gives, computed here from every facet's
+ * projection: the facets within the tie tolerance of the closest one (in
+ * squared distance: 2 d tol + tol^2, tol = 1e-12 d + 1e-13 hmax), of
+ * them one with an interior foot, then the lowest index */
+static long rule_partner(int nf, const double *x, const double p[3], double hmax)
+{
+    double d2[8];
+    int in[8];
+    double dmin = INFINITY;
+    for (int f = 0; f < nf; f++) {
+        ffc_proj pr;
+        d2[f] = INFINITY;
+        if (ffc_project(3, (const double(*)[3])(x + 9 * f), p, &pr) < 0) continue;
+        d2[f] = pr.dist * pr.dist;
+        in[f] = pr.where == FFC_FOOT_INSIDE;
+        dmin = fmin(dmin, d2[f]);
+    }
+    const double d = sqrt(dmin), tol = 1e-12 * d + 1e-13 * hmax, lim = dmin + 2 * d * tol + tol * tol;
+    long best = -1;
+    for (int f = 0; f < nf; f++)
+        if (d2[f] <= lim && (best < 0 || (in[f] && !in[best]))) best = f;
+    return best;
+}
+
+/* Three facets whose pairwise ties form a cycle: A, the foot on an edge at
+ * d^2 (1 + 1e-14); B, interior, d^2 + 0.55 T; C, interior, d^2 + 1.1 T (T the tie
+ * tolerance). B ties A and wins (interior), C ties B, but A is closer than
+ * C beyond T: a pairwise rule picks by the order it meets them. In every
+ * order of the facets, the traversal, the warm-started batches and brute
+ * force give the rule's answer (B). */
+static void test_tie_order(void **state)
+{
+    (void)state;
+    const double p[3] = {-1e-7, 0.0, 1.0}, hmax = sqrt(5.0); /* (A's foot clamped onto its edge) */
+    const double tol = 1e-12 + 1e-13 * hmax, T = 2 * tol + tol * tol;
+    const double zB = 1.0 - sqrt(1.0 + 0.55 * T), zC = 1.0 - sqrt(1.0 + 1.1 * T);
+    const double geo[3][9] = {{0, -1, 0, 0, 1, 0, 2, 0, 0},                 /* A */
+                              {-1, -1, zB, 1, -1, zB, 0, 1, zB},           /* B */
+                              {-1, -1, zC, 1, -1, zC, 0, 1, zC}};          /* C */
+    const int perm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    for (int q = 0; q < 6; q++) {
+        double x[27];
+        long F[9];
+        for (int f = 0; f < 3; f++) memcpy(x + 9 * f, geo[perm[q][f]], sizeof geo[0]);
+        for (int k = 0; k < 9; k++) F[k] = k;
+        const long want = rule_partner(3, x, p, hmax);
+        assert_int_equal(perm[q][want], 1); /* B */
+        ffc_tree *t;
+        assert_int_equal(ffc_tree_build(3, 3, F, 9, x, &t), FFC_OK);
+        long f;
+        ffc_proj pr;
+        assert_int_equal(ffc_tree_nearest(t, p, 10.0, &f, &pr), FFC_OK);
+        assert_int_equal(f, want);
+        /* a batch whose earlier points warm-start the last one from each facet */
+        double P[12];
+        for (int k = 0; k < 3; k++) {
+            for (int i = 0; i < 3; i++) P[3 * k + i] = (x[9 * k + i] + x[9 * k + 3 + i] + x[9 * k + 6 + i]) / 3;
+            P[3 * k + 2] += 0.1;
+        }
+        memcpy(P + 9, p, sizeof p);
+        ffc_search_opts o = ffc_search_defaults();
+        o.capture_rel = 10.0;
+        ffc_link L[4];
+        assert_true(ffc_search_points(t, 4, P, &o, L) >= 1);
+        assert_int_equal(L[3].mf, want);
+        /* the point as the centroid of a slave facet (degree 1): the
+         * traversal and the library's unpruned loop */
+        const double xs[9] = {p[0] - 1, p[1] - 1, p[2], p[0] + 1, p[1] - 1, p[2], p[0], p[1] + 2, p[2]};
+        const long Fs[3] = {0, 1, 2};
+        ffc_link S[1];
+        assert_int_equal(ffc_quad_size(1), 1);
+        assert_int_equal(ffc_search(t, 3, 1, Fs, 3, xs, 1, &o, 1, S), 1);
+        assert_int_equal(S[0].mf, want);
+        assert_int_equal(ffc_search_brute(t, 3, 1, Fs, 3, xs, 1, &o, 1, S), 1);
+        assert_int_equal(S[0].mf, want);
+        for (int k = 0; k < 3; k++) { /* one point at a time, warm started from facet k */
+            assert_true(ffc_search_points(t, 1, P + 3 * k, &o, L) >= 0);
+            ffc_link L2[2];
+            double P2[6];
+            memcpy(P2, P + 3 * k, 3 * sizeof *P2);
+            memcpy(P2 + 3, p, sizeof p);
+            assert_true(ffc_search_points(t, 2, P2, &o, L2) >= 1);
+            assert_int_equal(L2[1].mf, want);
+        }
+        ffc_tree_free(t);
+    }
+}
+
+/* A facet without area (two vertices at one point, or three on a line)
+ * takes no point: ffc_project refuses it, and the search skips it in every
+ * path, so that a point above the edge of a good facet links to it whether
+ * the bad facet is met before or after (its distance, 0/0 for coincident
+ * vertices, once won the tie rule) */
+static void test_degenerate_facet(void **state)
+{
+    (void)state;
+    const double bad[2][9] = {{5, 5, -5, 5, 5, -5, 5, 5, -4},       /* two vertices at one point */
+                              {0, -0.5, 0, 0, 0, 0, 0, 0.5, 0}};    /* three on A's edge */
+    for (int b = 0; b < 2; b++) {
+        double x[18] = {0};
+        memcpy(x, bad[b], sizeof bad[b]);
+        const double A[9] = {0, -1, 0, 0, 1, 0, 2, 0, 0};
+        memcpy(x + 9, A, sizeof A);
+        long F[6] = {0, 1, 2, 3, 4, 5};
+        ffc_tree *t;
+        assert_int_equal(ffc_tree_build(3, 2, F, 6, x, &t), FFC_OK);
+        /* points above A's edge x = 0 (the first warm-starts the second) */
+        const double P[6] = {0, 0, 1, 0, 0.5, 1};
+        ffc_search_opts o = ffc_search_defaults();
+        o.capture_rel = 10.0;
+        ffc_link L[2];
+        assert_int_equal(ffc_search_points(t, 2, P, &o, L), 2);
+        assert_int_equal(L[0].mf, 1);
+        assert_int_equal(L[1].mf, 1);
+        long f;
+        ffc_proj pr;
+        assert_int_equal(ffc_tree_nearest(t, P + 3, 10.0, &f, &pr), FFC_OK);
+        assert_int_equal(f, 1);
+        ffc_tree_free(t);
+    }
+}
+
+/* Models in units far from 1 (1e20 and 1e-21: the traversal's float boxes
+ * would overflow, or round up below float's smallest normal number, in
+ * absolute units): the links are brute force's, bit for bit */
+static void test_extreme_units(void **state)
+{
+    (void)state;
+    const double scale[3] = {1e20, 1e-21, 1e-30};
+    for (int c = 0; c < 3; c++) {
+        const double L = scale[c];
+        surf_t m = make_grid(3, 9, 9, 0, 0, L, L, z_flat, 0.3, 1, 110 + c);
+        surf_t s = make_grid(3, 11, 10, 0, 0, L, L, z_flat, 0.3, 0, 120 + c);
+        uint64_t seed = 130 + c;
+        for (long i = 0; i < m.nv; i++) m.x[3 * i + 2] = 0.05 * L * sin(5.0 * m.x[3 * i] / L);
+        for (long i = 0; i < s.nv; i++) s.x[3 * i + 2] = test_rand(&seed, -0.1, 0.1) * L;
+        ffc_search_opts o = ffc_search_defaults();
+        ffc_tree *t;
+        assert_int_equal(ffc_tree_build(3, m.nf, m.F, m.nv, m.x, &t), FFC_OK);
+        const long nl = s.nf * 3;
+        ffc_link *A = malloc(nl * sizeof *A), *B = malloc(nl * sizeof *B), *C = malloc(nl * sizeof *C);
+        double *P = malloc(nl * 3 * sizeof *P);
+        const int found = ffc_search(t, 3, s.nf, s.F, s.nv, s.x, 2, &o, nl, A);
+        assert_true(found > nl / 2);
+        assert_int_equal(ffc_search_brute(t, 3, s.nf, s.F, s.nv, s.x, 2, &o, nl, B), found);
+        for (long k = 0; k < nl; k++) slave_point(&s, &A[k], P + 3 * k);
+        assert_int_equal(ffc_search_points(t, nl, P, &o, C), found);
+        for (long k = 0; k < nl; k++) {
+            assert_int_equal(A[k].mf, B[k].mf);
+            assert_int_equal(C[k].mf, B[k].mf);
+            if (A[k].mf >= 0) assert_true(A[k].gap == B[k].gap);
+            long f;
+            ffc_proj pr;
+            assert_int_equal(ffc_tree_nearest(t, P + 3 * k, 10.0 * L, &f, &pr), FFC_OK);
+            long bf;
+            ffc_proj bpr;
+            const double bd = brute(&m, P + 3 * k, &bf, &bpr);
+            assert_true(f >= 0);
+            assert_close(pr.dist, bd, 1e-12 * bd);
+        }
+        free(A); free(B); free(C); free(P);
+        ffc_tree_free(t);
+        surf_free(&m);
+        surf_free(&s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -434,6 +602,9 @@ int main(void)
         cmocka_unit_test(test_capture_footprint),
         cmocka_unit_test(test_refit),
         cmocka_unit_test(test_far_offset),
+        cmocka_unit_test(test_tie_order),
+        cmocka_unit_test(test_degenerate_facet),
+        cmocka_unit_test(test_extreme_units),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
