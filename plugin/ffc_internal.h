@@ -7,6 +7,12 @@
  * its squared size (a sliver with angles below ~1e-10 rad). */
 #define FFC__DEGEN_REL 1e-12
 
+/* a linear facet with |t0 x t1|^2 = c2 and squared size h2 is degenerate */
+static inline int ffc__degenerate(double c2, double h2)
+{
+    return !(c2 > FFC__DEGEN_REL * FFC__DEGEN_REL * h2 * h2);
+}
+
 static inline double ffc__dot(const double a[3], const double b[3])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];

@@ -146,8 +146,7 @@ int ffc_mortar_segment(int qdeg, const double Xs[3][3], const double Xm[3][3], l
     for (int a = 0; a < 2; a++)
         for (int b = 0; b < 2; b++) mt[a][b] = ffc__dot(t[a], t[b]);
     const double det = mt[0][0] * mt[1][1] - mt[0][1] * mt[1][0];
-    if (!(det > FFC__DEGEN_REL * FFC__DEGEN_REL * (mt[0][0] + mt[1][1]) * (mt[0][0] + mt[1][1])))
-        return FFC_ERR_DEGENERATE;
+    if (ffc__degenerate(det, mt[0][0] + mt[1][1])) return FFC_ERR_DEGENERATE;
     double pm[3][2], dm[3][3];
     int ord[3] = {0, 1, 2}; /* master vertex of each corner of pm */
     for (int b = 0; b < 3; b++) {

@@ -189,7 +189,7 @@ int ffc__project_free(int nn, const double X[][3], const double p[3], ffc_proj *
     ffc__cross(t0, t1, c);
     const double det = ffc__dot(c, c);
     const double h2 = ffc__facet_size2(X);
-    if (!(det > FFC__DEGEN_REL * FFC__DEGEN_REL * h2 * h2)) return FFC_ERR_DEGENERATE;
+    if (ffc__degenerate(det, h2)) return FFC_ERR_DEGENERATE;
     ffc__cross(r0, t1, a);
     ffc__cross(t0, r0, b);
     double xi[2] = {ffc__dot(a, c) / det, ffc__dot(b, c) / det};

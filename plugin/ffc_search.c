@@ -180,8 +180,7 @@ static int fill_geometry(ffc_tree *t, const double x[])
             double e1[3], e2[3], c[3];
             for (int i = 0; i < 3; i++) { e1[i] = X[3 + i] - X[i]; e2[i] = X[6 + i] - X[i]; }
             ffc__cross(e1, e2, c);
-            const double h2 = ffc__facet_size2((const double(*)[3])X);
-            t->degen[s] = !(ffc__dot(c, c) > FFC__DEGEN_REL * FFC__DEGEN_REL * h2 * h2);
+            t->degen[s] = ffc__degenerate(ffc__dot(c, c), ffc__facet_size2((const double(*)[3])X));
         } else
             t->degen[s] = 0;
         if (h > t->hmax) t->hmax = h;
