@@ -449,6 +449,13 @@ typedef struct {
                           edge[nedge] (ffc_mortar_links), whose motion enters the tangent;
                           0: the tangent at fixed segments */
     const ffc_mortar_edge *edge;
+    int tdual;         /* 1: the nodal law's friction sums (the weighted slip and
+                          normal, the point traction) use the dual basis of a full
+                          linear facet, Phi_a = 4 N_a - 1, so that a node's weighted
+                          slip is its own, not an average with its neighbours';
+                          needs dual NULL, nedge 0 and linear slave facets (else
+                          ignored); the weighted gap and the pressure keep N_a.
+                          0: the friction sums use the normal part's shape values */
 } ffc_law;
 
 /* ------------------------------------------------------ Coulomb friction */
@@ -642,12 +649,14 @@ typedef struct {
                           scene's bulk matrix (ffc_scene_set_bulk) */
     /* mortar pairs (FFC_METHOD_MORTAR) */
     int dual;          /* 1: dual (biorthogonal) multipliers at the slave nodes, 0: standard */
+    /* augmented Lagrangian pairs with the nodal law on linear facets */
+    int dual_t;        /* 1: the friction sums in the dual basis (ffc_law.tdual), 0: in N_a */
 } ffc_pair_opts;
 
 /* Defaults: augmented Lagrangian, qdeg 4, nodal, mu 0, eps_n 0 (must be
  * set), eps_t 0, ffc_search_defaults(); node-to-surface: mu_d -1 (mu),
  * gtol 0 (automatic), ftol 1e-9, max_flips 4, scale 0 (from the bulk);
- * mortar: dual 1.  A mortar pair needs nodal = 1. */
+ * mortar: dual 1; dual_t 0.  A mortar pair needs nodal = 1. */
 ffc_pair_opts ffc_pair_defaults(void);
 
 /* FFC_OK, or FFC_ERR_VALUE / FFC_ERR_QUAD for an option out of range. */

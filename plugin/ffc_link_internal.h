@@ -42,6 +42,7 @@ typedef struct {
     double g, da;           /* gap, point area */
     double n[3];            /* master normal at the foot */
     double N[FFC_MAXNODES]; /* slave (multiplier) shape values at the point */
+    double Nt[FFC_MAXNODES]; /* ... of the friction sums (law->tdual: the dual basis; else N) */
     long dof[FFC_MAXDOF];
     double G[FFC_MAXDOF], dda[FFC_MAXDOF];
 } nlink_t;

@@ -73,6 +73,7 @@ ffc_pair_opts ffc_pair_defaults(void)
     o.max_flips = 4;
     o.scale = 0.0;
     o.dual = 1;
+    o.dual_t = 0;
     return o;
 }
 
@@ -83,7 +84,7 @@ int ffc_pair_opts_check(const ffc_pair_opts *o)
     if (!o) return FFC_ERR_NULL;
     if (o->method != FFC_METHOD_AL && o->method != FFC_METHOD_NTS && o->method != FFC_METHOD_MORTAR)
         return FFC_ERR_VALUE;
-    if ((o->dual != 0 && o->dual != 1) || (o->method == FFC_METHOD_MORTAR && o->nodal != 1)) return FFC_ERR_VALUE;
+    if ((o->dual != 0 && o->dual != 1) || (o->dual_t != 0 && o->dual_t != 1) || (o->method == FFC_METHOD_MORTAR && o->nodal != 1)) return FFC_ERR_VALUE;
     if (!isfinite(o->mu_d) || o->mu_d > o->mu || !finite_nonneg(o->gtol) || !finite_nonneg(o->ftol) ||
         o->max_flips < 1 || !finite_nonneg(o->scale))
         return FFC_ERR_VALUE;
@@ -549,6 +550,7 @@ static pair_call pair_view(const ffc_scene *s, const scene_pair *p, const double
     law->dvdu = s->dvdu;
     law->fixed = s->fixed;
     law->dual = p->o.method == FFC_METHOD_MORTAR && p->o.dual ? p->dual : NULL;
+    law->tdual = p->o.method == FFC_METHOD_AL && p->o.dual_t; /* (the friction sums; linear facets only) */
     law->nedge = p->o.method == FFC_METHOD_MORTAR ? p->ne : 0;
     law->edge = p->edges;
     *fx = s->fx;

@@ -785,12 +785,12 @@ KN<long> side_labels(const char *fn, const char *arg, KN<long> *l)
 
 // The pair options of the named arguments (from o, the current ones).
 enum { PO_METHOD, PO_MU, PO_EPSN, PO_EPST, PO_QDEG, PO_NODAL, PO_CREL, PO_CABS, PO_MUD, PO_GTOL, PO_FTOL, PO_FLIPS,
-       PO_SCALE, PO_DUAL, PO_N };
+       PO_SCALE, PO_DUAL, PO_DUALT, PO_N };
 basicAC_F0::name_and_type pair_names[] = {
     {"method", &typeid(string *)}, {"mu", &typeid(double)},   {"epsN", &typeid(double)}, {"epsT", &typeid(double)},
     {"qdeg", &typeid(long)},       {"nodal", &typeid(long)},  {"crel", &typeid(double)}, {"cabs", &typeid(double)},
     {"muD", &typeid(double)},      {"gtol", &typeid(double)}, {"ftol", &typeid(double)}, {"maxFlips", &typeid(long)},
-    {"scale", &typeid(double)},    {"dual", &typeid(long)}};
+    {"scale", &typeid(double)},    {"dual", &typeid(long)},   {"dualT", &typeid(long)}};
 
 const char *method_name(int m) { return m == FFC_METHOD_NTS ? "nts" : m == FFC_METHOD_MORTAR ? "mortar" : "al"; }
 
@@ -830,6 +830,7 @@ ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &
     o.qdeg = (int)nm.integer(PO_QDEG, o.qdeg);
     o.nodal = (int)nm.integer(PO_NODAL, o.nodal);
     o.dual = (int)nm.integer(PO_DUAL, o.dual);
+    o.dual_t = (int)nm.integer(PO_DUALT, o.dual_t);
     o.search.capture_rel = nm.real(PO_CREL, o.search.capture_rel);
     o.search.capture_abs = nm.real(PO_CABS, o.search.capture_abs);
     auto bad = [&](int i, double v, const char *why) {
@@ -850,6 +851,7 @@ ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &
     if (o.nodal != 0 && o.nodal != 1) bad(PO_NODAL, o.nodal, "must be 1 (multipliers at slave nodes) or 0 (at quadrature points)");
     if (m == FFC_METHOD_MORTAR && o.nodal != 1) bad(PO_NODAL, o.nodal, "must be 1 with method \"mortar\" (its multipliers live at the slave nodes)");
     if (o.dual != 0 && o.dual != 1) bad(PO_DUAL, o.dual, "must be 1 (dual multipliers) or 0 (standard)");
+    if (o.dual_t != 0 && o.dual_t != 1) bad(PO_DUALT, o.dual_t, "must be 1 (friction sums in the dual basis) or 0 (standard)");
     if (!(o.search.capture_rel >= 0) || std::isinf(o.search.capture_rel)) bad(PO_CREL, o.search.capture_rel, "must be finite and >= 0");
     if (!(o.search.capture_abs >= 0) || std::isinf(o.search.capture_abs)) bad(PO_CABS, o.search.capture_abs, "must be finite and >= 0");
     if (std::isnan(o.mu_d) || std::isinf(o.mu_d) || o.mu_d > o.mu)
@@ -986,6 +988,7 @@ double pairOption(const Named &, FFScene *const &C, long const &k, string *const
     if (n == "nts") return o.method == FFC_METHOD_NTS;
     if (n == "mortar") return o.method == FFC_METHOD_MORTAR;
     if (n == "dual") return o.dual;
+    if (n == "dualT") return o.dual_t;
     if (n == "muD") return o.mu_d;
     if (n == "gtol") return o.gtol;
     if (n == "ftol") return o.ftol;
@@ -994,7 +997,7 @@ double pairOption(const Named &, FFScene *const &C, long const &k, string *const
     if (n == "method")
         fail(fn, "argument 'name': \"method\" is a string and ffcOption returns numbers: read it as ffcOption(C, k, \"nts\") "
                  "(1: node-to-surface) and ffcOption(C, k, \"mortar\") (1: mortar), both 0 for the augmented Lagrangian");
-    fail(fn, "argument 'name': \"" + n + "\" is not an option of a pair (mu, epsN, epsT, qdeg, nodal, crel, cabs, nts, mortar, dual, muD, gtol, ftol, "
+    fail(fn, "argument 'name': \"" + n + "\" is not an option of a pair (mu, epsN, epsT, qdeg, nodal, crel, cabs, nts, mortar, dual, dualT, muD, gtol, ftol, "
                 "maxFlips, scale)");
 }
 

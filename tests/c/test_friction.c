@@ -499,15 +499,16 @@ static void test_assembled_tangent(void **state)
 {
     (void)state;
     uint64_t s = 23;
-    for (int nodal = 0; nodal <= 1; nodal++)
+    /* nodal 2: the nodal law with the friction sums in the dual basis (tdual) */
+    for (int nodal = 0; nodal <= 2; nodal++)
         for (int finite = 0; finite <= 1; finite++) {
             ascene *a = malloc(sizeof *a);
-            ascene_make(a, nodal, &s);
+            ascene_make(a, nodal > 0, &s);
             ffc_effects fx = {1, 0, finite};
             /* all stick (a huge mu), all slip (eps_T |r| >> mu t_N) */
-            ffc_law stick = {60, nodal, 0, 1e6, 5.0, 0.0, 0.0, NULL, NULL, 0, NULL};
+            ffc_law stick = {60, nodal > 0, 0, 1e6, 5.0, 0.0, 0.0, NULL, NULL, 0, NULL, nodal == 2};
             assembled_check(a, &fx, &stick, FFC_FRIC_STICK);
-            ffc_law slip = {60, nodal, 0, 0.3, 2000.0, 0.0, 0.0, NULL, NULL, 0, NULL};
+            ffc_law slip = {60, nodal > 0, 0, 0.3, 2000.0, 0.0, 0.0, NULL, NULL, 0, NULL, nodal == 2};
             assembled_check(a, &fx, &slip, FFC_FRIC_SLIP);
             free(a);
         }
@@ -529,9 +530,9 @@ static void test_assembled_fixed_direction(void **state)
         ascene *a = malloc(sizeof *a);
         ascene_make(a, 1, &s);
         ffc_effects fx = {1, 0, finite};
-        ffc_law stick = {60, 1, 0, 1e6, 5.0, 0.0, 0.0, fixed, NULL, 0, NULL};
+        ffc_law stick = {60, 1, 0, 1e6, 5.0, 0.0, 0.0, fixed, NULL, 0, NULL, 0};
         assembled_check(a, &fx, &stick, FFC_FRIC_STICK);
-        ffc_law slip = {60, 1, 0, 0.3, 2e5, 0.0, 0.0, fixed, NULL, 0, NULL};   // (the y slip alone must exceed the cone)
+        ffc_law slip = {60, 1, 0, 0.3, 2e5, 0.0, 0.0, fixed, NULL, 0, NULL, 0};   // (the y slip alone must exceed the cone)
         assembled_check(a, &fx, &slip, FFC_FRIC_SLIP);
         /* the update: no x traction at any slave node; the residual differs
          * from the undropped law's (the x friction is gone) */
@@ -572,10 +573,10 @@ static void test_assembled_velocity_form(void **state)
         ascene *a = malloc(sizeof *a);
         ascene_make(a, nodal, &s);
         ffc_effects fx = {1, 1, 0};
-        ffc_law stick = {60, nodal, 0, 1e6, 5.0 * dt, dt, 50.0, NULL, NULL, 0, NULL};
+        ffc_law stick = {60, nodal, 0, 1e6, 5.0 * dt, dt, 50.0, NULL, NULL, 0, NULL, 0};
         assembled_check_motion(a, &fx, &stick, FFC_FRIC_STICK, 0);
         assembled_check_motion(a, &fx, &stick, FFC_FRIC_STICK, 1);
-        ffc_law slip = {60, nodal, 0, 0.3, 2000.0 * dt, dt, 50.0, NULL, NULL, 0, NULL};
+        ffc_law slip = {60, nodal, 0, 0.3, 2000.0 * dt, dt, 50.0, NULL, NULL, 0, NULL, 0};
         assembled_check_motion(a, &fx, &slip, FFC_FRIC_SLIP, 0);
         assembled_check_motion(a, &fx, &slip, FFC_FRIC_SLIP, 1);
         /* agreement with the incremental form (ascene_make: v = (u - u^n) / 0.01) */
@@ -618,7 +619,7 @@ static void test_augment(void **state)
         ascene *a = malloc(sizeof *a);
         ascene_make(a, nodal, &s);
         ffc_effects fx = {1, 0, 0};
-        ffc_law law = {60, nodal, 0, 0.3, 30.0, 0.0, 0.0, NULL, NULL, 0, NULL};
+        ffc_law law = {60, nodal, 0, 0.3, 30.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0};
         double P[NL * FFC_POINT_COLS], lt0[NL * 3];
         long bad;
         assert_int_equal(ffc_points(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &law, P, &bad), FFC_OK);
