@@ -650,7 +650,9 @@ typedef struct {
     /* mortar pairs (FFC_METHOD_MORTAR) */
     int dual;          /* 1: dual (biorthogonal) multipliers at the slave nodes, 0: standard */
     /* augmented Lagrangian pairs with the nodal law on linear facets */
-    int dual_t;        /* 1: the friction sums in the dual basis (ffc_law.tdual), 0: in N_a */
+    int dual_t;        /* 1: the friction sums in the dual basis (ffc_law.tdual), 0: in N_a;
+                          1 elsewhere (another method, nodal 0, quadratic facets): FFC_ERR_VALUE
+                          (FFC_ERR_NODES for quadratic facets) */
 } ffc_pair_opts;
 
 /* Defaults: augmented Lagrangian, qdeg 4, nodal, mu 0, eps_n 0 (must be

@@ -84,7 +84,9 @@ int ffc_pair_opts_check(const ffc_pair_opts *o)
     if (!o) return FFC_ERR_NULL;
     if (o->method != FFC_METHOD_AL && o->method != FFC_METHOD_NTS && o->method != FFC_METHOD_MORTAR)
         return FFC_ERR_VALUE;
-    if ((o->dual != 0 && o->dual != 1) || (o->dual_t != 0 && o->dual_t != 1) || (o->method == FFC_METHOD_MORTAR && o->nodal != 1)) return FFC_ERR_VALUE;
+    if ((o->dual != 0 && o->dual != 1) || (o->dual_t != 0 && o->dual_t != 1) || (o->method == FFC_METHOD_MORTAR && o->nodal != 1))
+        return FFC_ERR_VALUE;
+    if (o->dual_t && (o->method != FFC_METHOD_AL || o->nodal != 1)) return FFC_ERR_VALUE; /* (where it acts) */
     if (!isfinite(o->mu_d) || o->mu_d > o->mu || !finite_nonneg(o->gtol) || !finite_nonneg(o->ftol) ||
         o->max_flips < 1 || !finite_nonneg(o->scale))
         return FFC_ERR_VALUE;
@@ -306,7 +308,7 @@ int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const 
     if ((st = check_nodes(nfs * s->nper, Fs, s->nv, bad))) return st;
     if ((st = check_nodes(nfm * s->nper, Fm, s->nv, bad))) return st;
     if ((st = check_fused(s->nper, nfs, Fs, nfm, Fm, s->nv, bad))) return st;
-    if ((o->method == FFC_METHOD_NTS || o->method == FFC_METHOD_MORTAR) && s->nper != 3) return FFC_ERR_NODES;
+    if ((o->method == FFC_METHOD_NTS || o->method == FFC_METHOD_MORTAR || o->dual_t) && s->nper != 3) return FFC_ERR_NODES;
     if (s->np > 0 && s->p[0].o.method != o->method) return FFC_ERR_VALUE; /* one method per scene */
     if (s->np == s->cap) {
         int cap = s->cap ? 2 * s->cap : 4;

@@ -852,6 +852,8 @@ ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &
     if (m == FFC_METHOD_MORTAR && o.nodal != 1) bad(PO_NODAL, o.nodal, "must be 1 with method \"mortar\" (its multipliers live at the slave nodes)");
     if (o.dual != 0 && o.dual != 1) bad(PO_DUAL, o.dual, "must be 1 (dual multipliers) or 0 (standard)");
     if (o.dual_t != 0 && o.dual_t != 1) bad(PO_DUALT, o.dual_t, "must be 1 (friction sums in the dual basis) or 0 (standard)");
+    if (o.dual_t && (m != FFC_METHOD_AL || o.nodal != 1 || d.order != 1))
+        bad(PO_DUALT, o.dual_t, "needs method \"al\" with nodal = 1 on linear facets (a scene of order 1): the nodal law's friction sums");
     if (!(o.search.capture_rel >= 0) || std::isinf(o.search.capture_rel)) bad(PO_CREL, o.search.capture_rel, "must be finite and >= 0");
     if (!(o.search.capture_abs >= 0) || std::isinf(o.search.capture_abs)) bad(PO_CABS, o.search.capture_abs, "must be finite and >= 0");
     if (std::isnan(o.mu_d) || std::isinf(o.mu_d) || o.mu_d > o.mu)

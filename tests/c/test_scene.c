@@ -346,6 +346,16 @@ static void test_bad_input(void **state)
     o = opts(0.0);
     o.mu = -1;
     assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), FFC_ERR_VALUE);
+    /* dual_t: 0 or 1, and only where it acts (the nodal law of the augmented Lagrangian) */
+    o = opts(0.0);
+    o.dual_t = 2;
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), FFC_ERR_VALUE);
+    o.dual_t = 1;
+    o.nodal = 0;
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), FFC_ERR_VALUE);
+    o.nodal = 1;
+    o.method = FFC_METHOD_NTS;
+    assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), FFC_ERR_VALUE);
     o = opts(0.0);
     Fm0[4] = NV;
     assert_int_equal(ffc_scene_add_pair(s, 2, Fs0, 2, Fm0, &o, &bad), FFC_ERR_INDEX);
