@@ -44,6 +44,19 @@ i1=$(ino); run; i2=$(ino)
 touch cube.geo; run; i3=$(ino)
 [ "$i2" != "$i3" ] || fail "cached mesh kept although the .geo is newer"
 
+# two scripts meshing the same new cache file at once: each gmsh writes a
+# file of its own (named by its shell's pid), renamed into place, so
+# neither reads the other's half-written file nor loses its own
+# (a finer mesh, so that gmsh takes long enough for the two to overlap)
+sed 's/h 0.5/h 0.04/' tiny.edp > fine.edp
+sh "$repo/scripts/ff" fine.edp >log1 2>&1 & p1=$!
+sh "$repo/scripts/ff" fine.edp >log2 2>&1 & p2=$!
+wait $p1 || fail "concurrent meshing, first script: exit $? ($(tail -1 log1))"
+wait $p2 || fail "concurrent meshing, second script: exit $? ($(tail -1 log2))"
+read -r nv msh < results/out.txt
+[ -f "$msh" ] || fail "concurrent meshing left no $msh"
+ls .ffc-cache | grep -q tmp && fail "concurrent meshing left a temporary file: $(ls .ffc-cache)"
+
 # the scene of README "Your own scene", pasted into a file here: it runs
 # with default settings and writes its JSON here
 awk '/^## Your own scene/{f=1} f&&/^```$/&&c==1{exit} f&&c==1{print} f&&/^```$/{c=1}' "$repo/README.md" > my-scene.edp
