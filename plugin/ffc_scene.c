@@ -552,7 +552,7 @@ static pair_call pair_view(const ffc_scene *s, const scene_pair *p, const double
     law->dvdu = s->dvdu;
     law->fixed = s->fixed;
     law->dual = p->o.method == FFC_METHOD_MORTAR && p->o.dual ? p->dual : NULL;
-    law->tdual = p->o.method == FFC_METHOD_AL && p->o.dual_t; /* (the friction sums; linear facets only) */
+    law->tdual = p->o.dual_t; /* (augmented Lagrangian only: ffc_pair_opts_check) */
     law->nedge = p->o.method == FFC_METHOD_MORTAR ? p->ne : 0;
     law->edge = p->edges;
     *fx = s->fx;
