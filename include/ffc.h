@@ -797,31 +797,6 @@ int ffc_scene_facet_size(const ffc_scene *s, int pair, double *h);
  * from Lame's constants (force/length^2). */
 double ffc_plane_modulus(double lame1, double lame2);
 
-/* One side of a pair: means over its facets, from the plane modulus E' of
- * the body behind each facet. */
-typedef struct {
-    double E; /* mean E' (stress) */
-    double h; /* mean facet size, the longest edge (length) */
-    double k; /* mean E' / h: one element layer's stiffness (force/length^3) */
-} ffc_side;
-
-/* The two sides of pair k, from E' behind each facet, Ep_s[nfs] and
- * Ep_m[nfm] (in the pair's facet order).  FFC_ERR_VALUE for a modulus that
- * is not positive, FFC_ERR_DEGENERATE for a facet of zero size. */
-int ffc_scene_pair_sides(const ffc_scene *s, int pair, const double Ep_s[], const double Ep_m[], ffc_side *slave,
-                         ffc_side *master);
-
-/* A stiff slave on a soft master: 1 when the slave's mean E' is at least
- * FFC_STIFF_SLAVE_E x the master's and its facets are not clearly coarser
- * (mean size below FFC_STIFF_SLAVE_H x the master's), else 0.  Contact
- * then acts only at the slave's nodes, which barely move, on a soft surface
- * free between them, and the multipliers need not settle (a half-cylinder
- * of E 1e5 as slave on a block of E 1e3 did not converge, nor at E 1e4;
- * the block as slave did, and the cylinder with facets 2.3x the block's). */
-#define FFC_STIFF_SLAVE_E 10.0
-#define FFC_STIFF_SLAVE_H 2.0
-int ffc_side_stiff_slave(const ffc_side *slave, const ffc_side *master);
-
 /* Automatic penalty of pair k from the plane-strain modulus of the body
  * behind each facet, Ep_s[nfs] and Ep_m[nfm] (in the pair's facet order):
  *     eps_N = 200 / (1 / k_s + 1 / k_m),   k = mean over a side's facets of E' / h,

@@ -912,54 +912,31 @@ double ffc_plane_modulus(double lame1, double lame2)
     return 4.0 * lame2 * (lame1 + lame2) / (lame1 + 2.0 * lame2);
 }
 
-/* means over nf facets of E'_f, h_f and E'_f / h_f (the stiffness of one
- * element layer under the surface, force/length^3) */
-static int side_means(int nper, long nf, const long F[], const double X[], const double Ep[], ffc_side *side)
+/* mean of E'_f / h_f over nf facets: the stiffness of one element layer
+ * under the surface (force/length^3) */
+static int side_stiffness(int nper, long nf, const long F[], const double X[], const double Ep[], double *k)
 {
-    double sE = 0.0, sh = 0.0, sk = 0.0;
+    double sum = 0.0;
     for (long f = 0; f < nf; f++) {
         const double h = mean_size(nper, 1, F + nper * f, X);
         if (!(Ep[f] > 0) || !isfinite(Ep[f])) return FFC_ERR_VALUE;
         if (!(h > 0)) return FFC_ERR_DEGENERATE;
-        sE += Ep[f];
-        sh += h;
-        sk += Ep[f] / h;
+        sum += Ep[f] / h;
     }
-    if (nf < 1) return FFC_ERR_EMPTY;
-    side->E = sE / nf;
-    side->h = sh / nf;
-    side->k = sk / nf;
+    *k = sum / nf;
     return FFC_OK;
-}
-
-int ffc_scene_pair_sides(const ffc_scene *s, int pair, const double Ep_s[], const double Ep_m[], ffc_side *slave,
-                         ffc_side *master)
-{
-    if (!s || !Ep_s || !Ep_m || !slave || !master) return FFC_ERR_NULL;
-    if (pair < 0 || pair >= s->np) return FFC_ERR_INDEX;
-    const scene_pair *p = &s->p[pair];
-    ffc_side a, b;
-    int st = side_means(s->nper, p->nfs, p->Fs, s->X, Ep_s, &a);
-    if (!st) st = side_means(s->nper, p->nfm, p->Fm, s->X, Ep_m, &b);
-    if (st) return st;
-    *slave = a;
-    *master = b;
-    return FFC_OK;
-}
-
-int ffc_side_stiff_slave(const ffc_side *slave, const ffc_side *master)
-{
-    if (!slave || !master) return 0;
-    return slave->E >= FFC_STIFF_SLAVE_E * master->E && slave->h < FFC_STIFF_SLAVE_H * master->h;
 }
 
 int ffc_scene_auto_penalty(const ffc_scene *s, int pair, const double Ep_s[], const double Ep_m[], double *eps)
 {
-    if (!eps) return FFC_ERR_NULL;
-    ffc_side a, b;
-    int st = ffc_scene_pair_sides(s, pair, Ep_s, Ep_m, &a, &b);
+    if (!s || !Ep_s || !Ep_m || !eps) return FFC_ERR_NULL;
+    if (pair < 0 || pair >= s->np) return FFC_ERR_INDEX;
+    const scene_pair *p = &s->p[pair];
+    double ks, km;
+    int st = side_stiffness(s->nper, p->nfs, p->Fs, s->X, Ep_s, &ks);
+    if (!st) st = side_stiffness(s->nper, p->nfm, p->Fm, s->X, Ep_m, &km);
     if (st) return st;
-    *eps = 200.0 / (1.0 / a.k + 1.0 / b.k);
+    *eps = 200.0 / (1.0 / ks + 1.0 / km);
     return FFC_OK;
 }
 

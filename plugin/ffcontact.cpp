@@ -1286,10 +1286,14 @@ double sceneFacetSize(const Named &nm, FFScene *const &C)
     return h;
 }
 
-// E' behind each facet of pair p's two sides (slave, master) from Lame's
-// constants per tetrahedron (P0 arrays of the scene's mesh), checked
-static void side_moduli(const char *fn, SceneData &d, int p, KN<double> *l1, KN<double> *l2, std::vector<double> Ep[2])
+// ffcAutoPenalty(C, k, lame1, lame2): the automatic normal penalty of pair
+// k (see ffc_scene_auto_penalty) from Lame's constants per tetrahedron
+// (P0 arrays of the scene's mesh: lame1[], lame2[]).
+double sceneAutoPenalty(const Named &, FFScene *const &C, long const &k, KN<double> *const &l1, KN<double> *const &l2)
 {
+    const char *fn = "ffcAutoPenalty";
+    SceneData &d = need_scene(fn, C);
+    const int p = need_pair_index(fn, d, k, false, "k");
     const char *arg[2] = {"lame1", "lame2"};
     KN<double> *l[2] = {l1, l2};
     for (int i = 0; i < 2; i++) {
@@ -1302,6 +1306,7 @@ static void side_moduli(const char *fn, SceneData &d, int p, KN<double> *l1, KN<
         }
         need_finite(fn, arg[i], l[i]);
     }
+    std::vector<double> Ep[2];
     const std::vector<long> *tets[2] = {&d.tetS[p], &d.tetM[p]};
     for (int side = 0; side < 2; side++)
         for (long t : *tets[side]) {
@@ -1314,43 +1319,10 @@ static void side_moduli(const char *fn, SceneData &d, int p, KN<double> *l1, KN<
             }
             Ep[side].push_back(e);
         }
-}
-
-// ffcAutoPenalty(C, k, lame1, lame2): the automatic normal penalty of pair
-// k (see ffc_scene_auto_penalty) from Lame's constants per tetrahedron
-// (P0 arrays of the scene's mesh: lame1[], lame2[]).
-double sceneAutoPenalty(const Named &, FFScene *const &C, long const &k, KN<double> *const &l1, KN<double> *const &l2)
-{
-    const char *fn = "ffcAutoPenalty";
-    SceneData &d = need_scene(fn, C);
-    const int p = need_pair_index(fn, d, k, false, "k");
-    std::vector<double> Ep[2];
-    side_moduli(fn, d, p, l1, l2, Ep);
     double eps = 0;
     int st = ffc_scene_auto_penalty(d.s, p, Ep[0].data(), Ep[1].data(), &eps);
     if (st) scene_error(fn, st, -1, "the automatic penalty");
     return eps;
-}
-
-// ffcPairSides(C, k, lame1, lame2, sides): pair k's sides (ffc_scene_pair_sides)
-// into sides = [E's, h_s, k_s, E'm, h_m, k_m]; returns 1 for a stiff slave on a
-// soft master (ffc_side_stiff_slave), else 0.
-long scenePairSides(const Named &, FFScene *const &C, long const &k, KN<double> *const &l1, KN<double> *const &l2,
-                    KN<double> *const &out)
-{
-    const char *fn = "ffcPairSides";
-    SceneData &d = need_scene(fn, C);
-    const int p = need_pair_index(fn, d, k, false, "k");
-    if (!out) fail(fn, "argument 'sides': array is not defined");
-    std::vector<double> Ep[2];
-    side_moduli(fn, d, p, l1, l2, Ep);
-    ffc_side a, b;
-    int st = ffc_scene_pair_sides(d.s, p, Ep[0].data(), Ep[1].data(), &a, &b);
-    if (st) scene_error(fn, st, -1, "the sides of the pair");
-    out->resize(6);
-    (*out)[0] = a.E, (*out)[1] = a.h, (*out)[2] = a.k;
-    (*out)[3] = b.E, (*out)[4] = b.h, (*out)[5] = b.k;
-    return ffc_side_stiff_slave(&a, &b);
 }
 
 // ffcInverted(C, u): the first tetrahedron inverted or collapsed at u, -1 if none.
@@ -1799,7 +1771,6 @@ void init_scene()
     Global.Add("ffcFixed", "(", named<long, S, V>("ffcFixed", nullptr, 0, sceneFixed));
     Global.Add("ffcSurfaceDofs", "(", named<long, S, V>("ffcSurfaceDofs", nullptr, 0, sceneSurfaceDofs));
     Global.Add("ffcAutoPenalty", "(", named<double, S, long, V, V>("ffcAutoPenalty", nullptr, 0, sceneAutoPenalty));
-    Global.Add("ffcPairSides", "(", named<long, S, long, V, V, V>("ffcPairSides", nullptr, 0, scenePairSides));
     Global.Add("ffcFacetSize", "(", named<double, S>("ffcFacetSize", pair_only_names, 1, sceneFacetSize));
     typedef Matrice_Creuse<double> *M;
     Global.Add("ffcBulk", "(", named<long, S, M>("ffcBulk", bulk_names, 1, sceneBulk));

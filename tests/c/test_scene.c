@@ -325,43 +325,6 @@ static void test_auto_penalty(void **state)
     ffc_scene_free(s);
 }
 
-/* The sides of a pair: means of E', h and E'/h over each side's facets
- * (the unit squares' triangles: h = sqrt(2)), and the stiff-slave rule at
- * its two thresholds: E'_s >= 10 E'_m with h_s < 2 h_m. */
-static void test_pair_sides(void **state)
-{
-    (void)state;
-    ffc_scene *s = make(1, 0);
-    const double h = sqrt(2.0);
-    double Es[2] = {1e5, 3e5}, Em[2] = {1e3, 3e3};
-    ffc_side a, b;
-    assert_int_equal(ffc_scene_pair_sides(s, 0, Es, Em, &a, &b), FFC_OK);
-    assert_close(a.E, 2e5, 1e-12 * 2e5);
-    assert_close(a.h, h, 1e-12);
-    assert_close(a.k, 2e5 / h, 1e-12 * 2e5);
-    assert_close(b.E, 2e3, 1e-12 * 2e3);
-    assert_close(b.k, 2e3 / h, 1e-12 * 2e3);
-    assert_int_equal(ffc_side_stiff_slave(&a, &b), 1);  /* 100 x stiffer, same facets */
-    assert_int_equal(ffc_side_stiff_slave(&b, &a), 0);  /* the soft side as slave */
-    ffc_side s9 = {9.99, 1.0, 9.99}, s10 = {10.0, 1.0, 10.0}, m = {1.0, 1.0, 1.0};
-    assert_int_equal(ffc_side_stiff_slave(&s9, &m), 0);
-    assert_int_equal(ffc_side_stiff_slave(&s10, &m), 1);
-    s10.h = 1.99;
-    assert_int_equal(ffc_side_stiff_slave(&s10, &m), 1);
-    s10.h = 2.0;                                        /* facets twice the master's: spared */
-    assert_int_equal(ffc_side_stiff_slave(&s10, &m), 0);
-    /* the automatic penalty is built from the same sides */
-    double eps = 0;
-    assert_int_equal(ffc_scene_auto_penalty(s, 0, Es, Em, &eps), FFC_OK);
-    assert_close(eps, 200 / (1 / a.k + 1 / b.k), 1e-12 * eps);
-    Em[1] = -1;
-    assert_int_equal(ffc_scene_pair_sides(s, 0, Es, Em, &a, &b), FFC_ERR_VALUE);
-    assert_int_equal(ffc_scene_pair_sides(s, 1, Es, Em, &a, &b), FFC_ERR_INDEX);
-    assert_int_equal(ffc_scene_pair_sides(s, 0, Es, NULL, &a, &b), FFC_ERR_NULL);
-    assert_int_equal(ffc_side_stiff_slave(NULL, &b), 0);
-    ffc_scene_free(s);
-}
-
 static void test_bad_input(void **state)
 {
     (void)state;
@@ -516,7 +479,6 @@ int main(void)
         cmocka_unit_test(test_friction_per_pair),
         cmocka_unit_test(test_touching_stick),
         cmocka_unit_test(test_auto_penalty),
-        cmocka_unit_test(test_pair_sides),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_nts_pairs),
     };
