@@ -1325,6 +1325,34 @@ double sceneAutoPenalty(const Named &, FFScene *const &C, long const &k, KN<doub
     return eps;
 }
 
+// ffcFreeMotions(C, M): the rigid motions of the scene's bodies that its
+// prescribed dofs (ffcFixed) leave free (ffc_scene_free_motions), one row
+// each: body (its lowest node), t x y z, w x y z, p x y z, that node's x y z;
+// returns the count.
+long sceneFreeMotions(const Named &, FFScene *const &C, KNM<double> *const &M)
+{
+    const char *fn = "ffcFreeMotions";
+    SceneData &d = need_scene(fn, C);
+    if (!M) fail(fn, "argument 'M': array is not defined");
+    long n = 0;
+    int st = ffc_scene_free_motions(d.s, 0, nullptr, &n);
+    std::vector<ffc_motion> m(n + 1);
+    if (st == FFC_ERR_CAPACITY) st = ffc_scene_free_motions(d.s, n, m.data(), &n);
+    if (st == FFC_ERR_EMPTY) fail(fn, "argument 'C': the scene was made without tetrahedra");
+    if (st) scene_error(fn, st, -1, "the free rigid motions");
+    M->resize(n, 13);
+    for (long r = 0; r < n; r++) {
+        (*M)(r, 0L) = m[r].body;
+        for (long k = 0; k < 3; k++) {
+            (*M)(r, 1 + k) = m[r].t[k];
+            (*M)(r, 4 + k) = m[r].w[k];
+            (*M)(r, 7 + k) = m[r].p[k];
+            (*M)(r, 10 + k) = m[r].x[k];
+        }
+    }
+    return n;
+}
+
 // ffcInverted(C, u): the first tetrahedron inverted or collapsed at u, -1 if none.
 // ffcFixed(C, fixed): the prescribed dofs (fixed[i] != 0, 3 per node: a
 // Dirichlet mask), read by the nodal friction law (ffc_scene_set_fixed).
@@ -1771,6 +1799,7 @@ void init_scene()
     Global.Add("ffcFixed", "(", named<long, S, V>("ffcFixed", nullptr, 0, sceneFixed));
     Global.Add("ffcSurfaceDofs", "(", named<long, S, V>("ffcSurfaceDofs", nullptr, 0, sceneSurfaceDofs));
     Global.Add("ffcAutoPenalty", "(", named<double, S, long, V, V>("ffcAutoPenalty", nullptr, 0, sceneAutoPenalty));
+    Global.Add("ffcFreeMotions", "(", named<long, S, KNM<double> *>("ffcFreeMotions", nullptr, 0, sceneFreeMotions));
     Global.Add("ffcFacetSize", "(", named<double, S>("ffcFacetSize", pair_only_names, 1, sceneFacetSize));
     typedef Matrice_Creuse<double> *M;
     Global.Add("ffcBulk", "(", named<long, S, M>("ffcBulk", bulk_names, 1, sceneBulk));

@@ -1,0 +1,190 @@
+/* ffc_rigid.c: the rigid motions of each body (tetrahedra joined by shared
+ * nodes) that a set of prescribed dofs leaves free. */
+#include "ffc.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void dsyev_(const char *jobz, const char *uplo, const int *n, double *a, const int *lda, double *w, double *work,
+            const int *lwork, int *info);
+
+/* eigenvalues w[n] (ascending) and orthonormal eigenvectors (columns of
+ * A[n*n], column-major) of the symmetric A; 0 or LAPACK's info */
+static int sym_eig(int n, double A[], double w[])
+{
+    double work[64];
+    int lwork = 64, info = 0;
+    dsyev_("V", "U", &n, A, &n, w, work, &lwork, &info);
+    return info;
+}
+
+static long root(long *up, long a)
+{
+    while (up[a] != a) {
+        up[a] = up[up[a]];
+        a = up[a];
+    }
+    return a;
+}
+
+/* Formulation: the rigid motions of a body of nodes x_a with centroid c and
+ * radius of gyration L are u(x) = t + (w / L) x (x - c), y = (t, w) in R^6.
+ * A prescribed dof (a, d) asks u_d(x_a) = 0, a row e_d' B_a y of a 3x6
+ * B_a = [I, -[x_a - c]_x / L]; the motions free of all of them are the null
+ * space of G = sum over prescribed (a, d) of B_a' e_d e_d' B_a (6x6, its
+ * eigenvalues of order the prescribed nodes' count when not null), kept
+ * below tol = 1e-10 x the body's node count. Within it the rotation parts'
+ * Gram W = Z_w' Z_w splits pure translations (its null space) from
+ * rotations, whose axes are taken along the coordinate axes where their
+ * span allows; a rotation w' = w / L with a translation t is a screw about
+ * the axis through p = c + (w' x t_perp) / |w'|^2 with the slide t_par
+ * along it (t = t_par + t_perp, t_par parallel to w'). */
+int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const double fixed[], long cap,
+                   ffc_motion out[], long *n)
+{
+    if (!X || !T || !n || (cap > 0 && !out)) return FFC_ERR_NULL;
+    if (nv < 1 || nt < 1 || cap < 0) return FFC_ERR_SIZE;
+    for (long i = 0; i < 4 * nt; i++)
+        if (T[i] < 0 || T[i] >= nv) return FFC_ERR_INDEX;
+    long *up = malloc((size_t)nv * sizeof *up);
+    unsigned char *used = calloc((size_t)nv, 1);
+    if (!up || !used) {
+        free(up);
+        free(used);
+        return FFC_ERR_MEMORY;
+    }
+    for (long a = 0; a < nv; a++) up[a] = a;
+    for (long e = 0; e < nt; e++)
+        for (int k = 0; k < 4; k++) {
+            used[T[4 * e + k]] = 1;
+            long r0 = root(up, T[4 * e]), r1 = root(up, T[4 * e + k]);
+            if (r0 != r1) up[r0 > r1 ? r0 : r1] = r0 < r1 ? r0 : r1; /* the lower index is the root */
+        }
+    for (long a = 0; a < nv; a++) up[a] = root(up, a);
+    long found = 0;
+    for (long b = 0; b < nv; b++) {
+        if (!used[b] || up[b] != b) continue; /* b: a body's lowest node */
+        double c[3] = {0, 0, 0}, L2 = 0.0;
+        long m = 0;
+        for (long a = b; a < nv; a++)
+            if (used[a] && up[a] == b) {
+                for (int d = 0; d < 3; d++) c[d] += X[3 * a + d];
+                m++;
+            }
+        for (int d = 0; d < 3; d++) c[d] /= (double)m;
+        for (long a = b; a < nv; a++)
+            if (used[a] && up[a] == b)
+                for (int d = 0; d < 3; d++) L2 += (X[3 * a + d] - c[d]) * (X[3 * a + d] - c[d]);
+        const double L = sqrt(L2 / (double)m);
+        if (!(L > 0)) continue; /* a body of one point */
+        double G[36] = {0};
+        if (fixed)
+            for (long a = b; a < nv; a++) {
+                if (!used[a] || up[a] != b) continue;
+                const double r[3] = {(X[3 * a] - c[0]) / L, (X[3 * a + 1] - c[1]) / L, (X[3 * a + 2] - c[2]) / L};
+                /* the rows of B_a: u = t + w x r */
+                const double B[3][6] = {{1, 0, 0, 0, r[2], -r[1]}, {0, 1, 0, -r[2], 0, r[0]}, {0, 0, 1, r[1], -r[0], 0}};
+                for (int d = 0; d < 3; d++) {
+                    if (fixed[3 * a + d] == 0) continue;
+                    for (int i = 0; i < 6; i++)
+                        for (int j = 0; j < 6; j++) G[6 * j + i] += B[d][i] * B[d][j];
+                }
+            }
+        double g[6], Z[36];
+        if (sym_eig(6, G, g)) {
+            free(up);
+            free(used);
+            return FFC_ERR_SINGULAR;
+        }
+        int k = 0;
+        while (k < 6 && g[k] <= 1e-10 * (double)m) k++;
+        if (k == 0) continue;
+        memcpy(Z, G, sizeof Z); /* the null space: Z's first k columns */
+        double W[36] = {0}, wv[6];
+        for (int i = 0; i < k; i++)
+            for (int j = 0; j < k; j++)
+                for (int d = 3; d < 6; d++) W[k * j + i] += Z[6 * i + d] * Z[6 * j + d];
+        if (sym_eig(k, W, wv)) {
+            free(up);
+            free(used);
+            return FFC_ERR_SINGULAR;
+        }
+        /* the basis y_q = Z v_q (v_q: W's eigenvectors); the rotation parts
+         * of those with lambda_q > 0 are orthogonal with |w_q|^2 = lambda_q */
+        double Y[36] = {0};
+        for (int q = 0; q < k; q++)
+            for (int i = 0; i < k; i++)
+                for (int d = 0; d < 6; d++) Y[6 * q + d] += W[k * q + i] * Z[6 * i + d];
+        int q0 = 0; /* translations: lambda_q ~ 0, first (wv ascending) */
+        for (; q0 < k && wv[q0] <= 1e-12; q0++, found++) {
+            if (found >= cap) continue;
+            const double *y = Y + 6 * q0;
+            ffc_motion *o = &out[found];
+            o->body = b;
+            double tn = sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]), sg = 1.0;
+            int big = 0;
+            for (int d = 1; d < 3; d++)
+                if (fabs(y[d]) > fabs(y[big])) big = d;
+            if (y[big] < 0) sg = -1.0; /* its largest component positive */
+            for (int d = 0; d < 3; d++) {
+                o->x[d] = X[3 * b + d];
+                o->t[d] = sg * y[d] / tn;
+                o->w[d] = 0.0;
+                o->p[d] = c[d];
+            }
+        }
+        /* turns: unit axes u in the span S of the w_q, the coordinate axes'
+         * projections onto S taken greedily (the largest first, orthogonal
+         * to those taken), so that an axis along x, y or z is named so;
+         * y(u) = sum_q (w_q . u / lambda_q) y_q */
+        double axes[3][3];
+        int na = 0;
+        for (; na < k - q0; na++) {
+            double best[3] = {0, 0, 0}, bn = -1.0;
+            for (int e = 0; e < 3; e++) {
+                double v[3] = {0, 0, 0};
+                for (int q = q0; q < k; q++) {
+                    const double *wq = Y + 6 * q + 3, a = wq[e] / wv[q];
+                    for (int d = 0; d < 3; d++) v[d] += a * wq[d];
+                }
+                for (int j = 0; j < na; j++) {
+                    const double pj = v[0] * axes[j][0] + v[1] * axes[j][1] + v[2] * axes[j][2];
+                    for (int d = 0; d < 3; d++) v[d] -= pj * axes[j][d];
+                }
+                const double vn = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+                if (vn > bn + 1e-9) {
+                    bn = vn;
+                    for (int d = 0; d < 3; d++) best[d] = v[d] / vn;
+                }
+            }
+            for (int d = 0; d < 3; d++) axes[na][d] = best[d];
+        }
+        for (int j = 0; j < na; j++, found++) {
+            if (found >= cap) continue;
+            double y[6] = {0};
+            for (int q = q0; q < k; q++) {
+                const double *yq = Y + 6 * q;
+                const double a = (yq[3] * axes[j][0] + yq[4] * axes[j][1] + yq[5] * axes[j][2]) / wv[q];
+                for (int d = 0; d < 6; d++) y[d] += a * yq[d];
+            }
+            /* a screw: the axis, the slide along it per radian, the axis point nearest c */
+            ffc_motion *o = &out[found];
+            o->body = b;
+            const double w[3] = {y[3] / L, y[4] / L, y[5] / L}, w2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+            const double tw = (y[0] * w[0] + y[1] * w[1] + y[2] * w[2]) / w2;
+            const double tp[3] = {y[0] - tw * w[0], y[1] - tw * w[1], y[2] - tw * w[2]};
+            const double wxt[3] = {w[1] * tp[2] - w[2] * tp[1], w[2] * tp[0] - w[0] * tp[2], w[0] * tp[1] - w[1] * tp[0]};
+            for (int d = 0; d < 3; d++) {
+                o->x[d] = X[3 * b + d];
+                o->w[d] = w[d] / sqrt(w2);
+                o->t[d] = tw * w[d] / sqrt(w2);
+                o->p[d] = c[d] + wxt[d] / w2;
+            }
+        }
+    }
+    free(up);
+    free(used);
+    *n = found;
+    return found > cap ? FFC_ERR_CAPACITY : FFC_OK;
+}
