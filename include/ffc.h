@@ -823,20 +823,23 @@ typedef struct {
     double t[3]; /* translation direction (unit), or slide per radian along the axis (length) */
     double w[3]; /* unit axis of the turn; 0 for a translation */
     double p[3]; /* a point of the axis: the one nearest the body's centroid (length) */
+    double amount; /* how far u moved the body along it (least squares over the body's nodes): a turn's
+                      angle about w (radians), a translation's length along t at the centroid; 0 without u */
 } ffc_motion;
 
 /* The rigid motions of each body that the prescribed dofs leave free: the
  * bodies are the tetrahedra T[nt*4] joined by shared nodes (nodes in no
  * tetrahedron are left out), fixed[nv*3] nonzero on a prescribed dof (NULL:
- * none).  Per body a basis of its free motions, translations first; *n the
- * count over all bodies, FFC_ERR_CAPACITY (with *n) when it exceeds cap. */
-int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const double fixed[], long cap,
-                   ffc_motion out[], long *n);
+ * none).  Per body a basis of its free motions, translations first, each
+ * with its amount in the displacement u[nv*3] (NULL: none); *n the count
+ * over all bodies, FFC_ERR_CAPACITY (with *n) when it exceeds cap. */
+int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const double fixed[], const double u[],
+                   long cap, ffc_motion out[], long *n);
 
 /* ffc_rigid_free on the scene's tetrahedra and its prescribed dofs
- * (ffc_scene_set_fixed; none given: every rigid motion is free);
- * FFC_ERR_EMPTY for a scene made without tetrahedra. */
-int ffc_scene_free_motions(const ffc_scene *s, long cap, ffc_motion out[], long *n);
+ * (ffc_scene_set_fixed; none given: every rigid motion is free), amounts
+ * in u (NULL: none); FFC_ERR_EMPTY for a scene made without tetrahedra. */
+int ffc_scene_free_motions(const ffc_scene *s, const double u[], long cap, ffc_motion out[], long *n);
 
 /* ffc_volume_check of the scene's tetrahedra at X + u. */
 int ffc_scene_check_volume(const ffc_scene *s, const double u[], long *bad);

@@ -40,8 +40,8 @@ static long root(long *up, long a)
  * span allows; a rotation w' = w / L with a translation t is a screw about
  * the axis through p = c + (w' x t_perp) / |w'|^2 with the slide t_par
  * along it (t = t_par + t_perp, t_par parallel to w'). */
-int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const double fixed[], long cap,
-                   ffc_motion out[], long *n)
+int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const double fixed[], const double u[],
+                   long cap, ffc_motion out[], long *n)
 {
     if (!X || !T || !n || (cap > 0 && !out)) return FFC_ERR_NULL;
     if (nv < 1 || nt < 1 || cap < 0) return FFC_ERR_SIZE;
@@ -78,6 +78,33 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
                 for (int d = 0; d < 3; d++) L2 += (X[3 * a + d] - c[d]) * (X[3 * a + d] - c[d]);
         const double L = sqrt(L2 / (double)m);
         if (!(L > 0)) continue; /* a body of one point */
+        /* the body's rigid part of u: alpha = (t_c, w L) minimizing
+         * sum_a |u_a - B_a alpha|^2, N alpha = sum_a B_a' u_a */
+        double alpha[6] = {0, 0, 0, 0, 0, 0};
+        if (u) {
+            double N[36] = {0}, rhs[6] = {0}, lam[6];
+            for (long a = b; a < nv; a++) {
+                if (!used[a] || up[a] != b) continue;
+                const double r[3] = {(X[3 * a] - c[0]) / L, (X[3 * a + 1] - c[1]) / L, (X[3 * a + 2] - c[2]) / L};
+                const double B[3][6] = {{1, 0, 0, 0, r[2], -r[1]}, {0, 1, 0, -r[2], 0, r[0]}, {0, 0, 1, r[1], -r[0], 0}};
+                for (int d = 0; d < 3; d++)
+                    for (int i = 0; i < 6; i++) {
+                        rhs[i] += B[d][i] * u[3 * a + d];
+                        for (int j = 0; j < 6; j++) N[6 * j + i] += B[d][i] * B[d][j];
+                    }
+            }
+            if (sym_eig(6, N, lam)) {
+                free(up);
+                free(used);
+                return FFC_ERR_SINGULAR;
+            }
+            for (int q = 0; q < 6; q++) {
+                if (!(lam[q] > 1e-12 * lam[5])) continue; /* (a body of collinear nodes) */
+                double vr = 0.0;
+                for (int i = 0; i < 6; i++) vr += N[6 * q + i] * rhs[i];
+                for (int i = 0; i < 6; i++) alpha[i] += N[6 * q + i] * vr / lam[q];
+            }
+        }
         double G[36] = {0};
         if (fixed)
             for (long a = b; a < nv; a++) {
@@ -133,6 +160,7 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
                 o->w[d] = 0.0;
                 o->p[d] = c[d];
             }
+            o->amount = alpha[0] * o->t[0] + alpha[1] * o->t[1] + alpha[2] * o->t[2];
         }
         /* turns: unit axes u in the span S of the w_q, the coordinate axes'
          * projections onto S taken greedily (the largest first, orthogonal
@@ -181,6 +209,7 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
                 o->t[d] = tw * w[d] / sqrt(w2);
                 o->p[d] = c[d] + wxt[d] / w2;
             }
+            o->amount = (alpha[3] * o->w[0] + alpha[4] * o->w[1] + alpha[5] * o->w[2]) / L;
         }
     }
     free(up);

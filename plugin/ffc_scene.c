@@ -940,11 +940,11 @@ int ffc_scene_auto_penalty(const ffc_scene *s, int pair, const double Ep_s[], co
     return FFC_OK;
 }
 
-int ffc_scene_free_motions(const ffc_scene *s, long cap, ffc_motion out[], long *n)
+int ffc_scene_free_motions(const ffc_scene *s, const double u[], long cap, ffc_motion out[], long *n)
 {
     if (!s || !n) return FFC_ERR_NULL;
     if (s->nt < 1) return FFC_ERR_EMPTY;
-    return ffc_rigid_free(s->nv, s->X, s->nt, s->T, s->fixed, cap, out, n);
+    return ffc_rigid_free(s->nv, s->X, s->nt, s->T, s->fixed, u, cap, out, n);
 }
 
 long ffc_scene_nfacets(const ffc_scene *s, int pair, int master)

@@ -1325,22 +1325,23 @@ double sceneAutoPenalty(const Named &, FFScene *const &C, long const &k, KN<doub
     return eps;
 }
 
-// ffcFreeMotions(C, M): the rigid motions of the scene's bodies that its
-// prescribed dofs (ffcFixed) leave free (ffc_scene_free_motions), one row
-// each: body (its lowest node), t x y z, w x y z, p x y z, that node's x y z;
-// returns the count.
-long sceneFreeMotions(const Named &, FFScene *const &C, KNM<double> *const &M)
+// ffcFreeMotions(C, M) and ffcFreeMotions(C, u, M): the rigid motions of
+// the scene's bodies that its prescribed dofs (ffcFixed) leave free
+// (ffc_scene_free_motions), one row each: body (its lowest node), t x y z,
+// w x y z, p x y z, that node's x y z, and (with u) the amount of u along
+// it; returns the count.
+static long free_motions(const char *fn, FFScene *C, KN<double> *u, KNM<double> *M)
 {
-    const char *fn = "ffcFreeMotions";
     SceneData &d = need_scene(fn, C);
+    const double *pu = u ? need_scene_u(fn, d, u) : nullptr;
     if (!M) fail(fn, "argument 'M': array is not defined");
     long n = 0;
-    int st = ffc_scene_free_motions(d.s, 0, nullptr, &n);
+    int st = ffc_scene_free_motions(d.s, pu, 0, nullptr, &n);
     std::vector<ffc_motion> m(n + 1);
-    if (st == FFC_ERR_CAPACITY) st = ffc_scene_free_motions(d.s, n, m.data(), &n);
+    if (st == FFC_ERR_CAPACITY) st = ffc_scene_free_motions(d.s, pu, n, m.data(), &n);
     if (st == FFC_ERR_EMPTY) fail(fn, "argument 'C': the scene was made without tetrahedra");
     if (st) scene_error(fn, st, -1, "the free rigid motions");
-    M->resize(n, 13);
+    M->resize(n, 14);
     for (long r = 0; r < n; r++) {
         (*M)(r, 0L) = m[r].body;
         for (long k = 0; k < 3; k++) {
@@ -1349,8 +1350,18 @@ long sceneFreeMotions(const Named &, FFScene *const &C, KNM<double> *const &M)
             (*M)(r, 7 + k) = m[r].p[k];
             (*M)(r, 10 + k) = m[r].x[k];
         }
+        (*M)(r, 13L) = m[r].amount;
     }
     return n;
+}
+long sceneFreeMotions(const Named &, FFScene *const &C, KNM<double> *const &M)
+{
+    return free_motions("ffcFreeMotions", C, nullptr, M);
+}
+long sceneFreeMotionsU(const Named &, FFScene *const &C, KN<double> *const &u, KNM<double> *const &M)
+{
+    if (!u) fail("ffcFreeMotions", "argument 'u': array is not defined");
+    return free_motions("ffcFreeMotions", C, u, M);
 }
 
 // ffcInverted(C, u): the first tetrahedron inverted or collapsed at u, -1 if none.
@@ -1800,6 +1811,7 @@ void init_scene()
     Global.Add("ffcSurfaceDofs", "(", named<long, S, V>("ffcSurfaceDofs", nullptr, 0, sceneSurfaceDofs));
     Global.Add("ffcAutoPenalty", "(", named<double, S, long, V, V>("ffcAutoPenalty", nullptr, 0, sceneAutoPenalty));
     Global.Add("ffcFreeMotions", "(", named<long, S, KNM<double> *>("ffcFreeMotions", nullptr, 0, sceneFreeMotions));
+    Global.Add("ffcFreeMotions", "(", named<long, S, V, KNM<double> *>("ffcFreeMotions", nullptr, 0, sceneFreeMotionsU));
     Global.Add("ffcFacetSize", "(", named<double, S>("ffcFacetSize", pair_only_names, 1, sceneFacetSize));
     typedef Matrice_Creuse<double> *M;
     Global.Add("ffcBulk", "(", named<long, S, M>("ffcBulk", bulk_names, 1, sceneBulk));

@@ -28,7 +28,7 @@ static void test_all_free(void **state)
     (void)state;
     ffc_motion m[12];
     long n = 0;
-    assert_int_equal(ffc_rigid_free(NV, X, 3, T, NULL, 12, m, &n), FFC_OK);
+    assert_int_equal(ffc_rigid_free(NV, X, 3, T, NULL, NULL, 12, m, &n), FFC_OK);
     assert_int_equal(n, 12);
     const double c[2][3] = {{0.4, 0.4, 0.4}, {5.25, 0.25, 1.25}};
     for (int b = 0; b < 2; b++) {
@@ -57,7 +57,7 @@ static void test_held(void **state)
     for (int a = 5; a < 8; a++) fixed[3 * a] = fixed[3 * a + 1] = 1;
     ffc_motion m[6];
     long n = 0;
-    assert_int_equal(ffc_rigid_free(NV, X, 3, T, fixed, 6, m, &n), FFC_OK);
+    assert_int_equal(ffc_rigid_free(NV, X, 3, T, fixed, NULL, 6, m, &n), FFC_OK);
     assert_int_equal(n, 3);
     assert_int_equal(m[0].body, 5);
     assert_close(fabs(m[0].t[2]), 1.0, 1e-12);
@@ -80,7 +80,7 @@ static void test_held(void **state)
      * z = 1) moves it in x and goes; the translation along z and the turn
      * about x stay */
     fixed[3 * 8] = 1;
-    assert_int_equal(ffc_rigid_free(NV, X, 3, T, fixed, 6, m, &n), FFC_OK);
+    assert_int_equal(ffc_rigid_free(NV, X, 3, T, fixed, NULL, 6, m, &n), FFC_OK);
     assert_int_equal(n, 2);
     for (int i = 0; i < 2; i++)
         for (int a = 5; a < NV; a++) { /* the nodes of body 1, whose motions these are */
@@ -101,7 +101,7 @@ static void test_axis(void **state)
     double fixed[12] = {1, 1, 0, 1, 1, 0, 0, 0, 0, 0, 0, 0};
     ffc_motion m[6];
     long n = 0;
-    assert_int_equal(ffc_rigid_free(4, Xa, 1, Ta, fixed, 6, m, &n), FFC_OK);
+    assert_int_equal(ffc_rigid_free(4, Xa, 1, Ta, fixed, NULL, 6, m, &n), FFC_OK);
     assert_int_equal(n, 2);
     assert_close(fabs(m[0].t[2]), 1.0, 1e-12);           /* the slide along z */
     assert_close(fabs(m[1].w[2]), 1.0, 1e-12);           /* the turn about z */
@@ -109,20 +109,48 @@ static void test_axis(void **state)
     assert_close(m[1].p[1], 0.0, 1e-12);
 }
 
+/* the amounts: body 1 held as in test_held, turned by 0.01 rad about x
+ * (through (5, 0.25, 1), in line with its centroid) and moved 0.002 along
+ * z: the turn about x reads 0.01, the one about y 0, the translation along
+ * z the centroid's 0.002, to round-off */
+static void test_amounts(void **state)
+{
+    (void)state;
+    double fixed[3 * NV] = {0}, u[3 * NV] = {0};
+    for (int i = 0; i < 15; i++) fixed[i] = 1;
+    for (int a = 5; a < 8; a++) fixed[3 * a] = fixed[3 * a + 1] = 1;
+    const double th = 0.01, tz = 0.002, p[3] = {5, 0.25, 1};
+    for (int a = 5; a < NV; a++) {
+        const double r[3] = {X[3 * a] - p[0], X[3 * a + 1] - p[1], X[3 * a + 2] - p[2]};
+        u[3 * a + 1] = -th * r[2];
+        u[3 * a + 2] = th * r[1] + tz;
+    }
+    ffc_motion m[6];
+    long n = 0;
+    assert_int_equal(ffc_rigid_free(NV, X, 3, T, fixed, u, 6, m, &n), FFC_OK);
+    assert_int_equal(n, 3);
+    assert_close(m[0].amount, tz, 1e-14);
+    assert_close(m[1].amount, th, 1e-14);
+    assert_close(m[2].amount, 0.0, 1e-14);
+    /* without u: no amounts */
+    assert_int_equal(ffc_rigid_free(NV, X, 3, T, fixed, NULL, 6, m, &n), FFC_OK);
+    for (int i = 0; i < 3; i++) assert_close(m[i].amount, 0.0, 0.0);
+}
+
 static void test_capacity_and_bad_input(void **state)
 {
     (void)state;
     ffc_motion m[2];
     long n = 0;
-    assert_int_equal(ffc_rigid_free(NV, X, 3, T, NULL, 2, m, &n), FFC_ERR_CAPACITY);
+    assert_int_equal(ffc_rigid_free(NV, X, 3, T, NULL, NULL, 2, m, &n), FFC_ERR_CAPACITY);
     assert_int_equal(n, 12);
-    assert_int_equal(ffc_rigid_free(NV, X, 3, T, NULL, 0, NULL, &n), FFC_ERR_CAPACITY);
+    assert_int_equal(ffc_rigid_free(NV, X, 3, T, NULL, NULL, 0, NULL, &n), FFC_ERR_CAPACITY);
     assert_int_equal(n, 12);
     const long bad[4] = {0, 1, 2, NV};
-    assert_int_equal(ffc_rigid_free(NV, X, 1, bad, NULL, 2, m, &n), FFC_ERR_INDEX);
-    assert_int_equal(ffc_rigid_free(NV, NULL, 1, T, NULL, 2, m, &n), FFC_ERR_NULL);
-    assert_int_equal(ffc_rigid_free(NV, X, 0, T, NULL, 2, m, &n), FFC_ERR_SIZE);
-    assert_int_equal(ffc_scene_free_motions(NULL, 2, m, &n), FFC_ERR_NULL);
+    assert_int_equal(ffc_rigid_free(NV, X, 1, bad, NULL, NULL, 2, m, &n), FFC_ERR_INDEX);
+    assert_int_equal(ffc_rigid_free(NV, NULL, 1, T, NULL, NULL, 2, m, &n), FFC_ERR_NULL);
+    assert_int_equal(ffc_rigid_free(NV, X, 0, T, NULL, NULL, 2, m, &n), FFC_ERR_SIZE);
+    assert_int_equal(ffc_scene_free_motions(NULL, NULL, 2, m, &n), FFC_ERR_NULL);
 }
 
 int main(void)
@@ -131,6 +159,7 @@ int main(void)
         cmocka_unit_test(test_all_free),
         cmocka_unit_test(test_held),
         cmocka_unit_test(test_axis),
+        cmocka_unit_test(test_amounts),
         cmocka_unit_test(test_capacity_and_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
