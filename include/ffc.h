@@ -816,9 +816,12 @@ long ffc_scene_nfacets(const ffc_scene *s, int pair, int master);
 
 /* A rigid motion of one body: a translation (w = 0: t the unit direction,
  * p the body's centroid) or a turn about the axis through p along the unit
- * w, with the slide t along it per radian (0 for a pure rotation). */
+ * w, with the slide t along it per radian (0 for a pure rotation).
+ * Translations and axes lie along the coordinate axes where the free
+ * motions allow. */
 typedef struct {
     long body;   /* the body's lowest node index */
+    long tet;    /* the body's first tetrahedron (index into T) */
     double x[3]; /* that node's reference position (length) */
     double t[3]; /* translation direction (unit), or slide per radian along the axis (length) */
     double w[3]; /* unit axis of the turn; 0 for a translation */

@@ -28,6 +28,34 @@ static long root(long *up, long a)
     return a;
 }
 
+/* Names the span of nb orthogonal vectors v[q] (squared lengths n2[q] > 0):
+ * nb orthonormal axes[][3] in it, the coordinate axes' projections onto
+ * the span taken greedily (the longest first, each orthogonal to those
+ * taken), so that x, y or z is named so when the span holds it. */
+static void name_axes(int nb, const double *const v[], const double n2[], double axes[][3])
+{
+    for (int j = 0; j < nb; j++) {
+        double best[3] = {0, 0, 0}, bn = -1.0;
+        for (int e = 0; e < 3; e++) {
+            double p[3] = {0, 0, 0};
+            for (int q = 0; q < nb; q++) {
+                const double a = v[q][e] / n2[q];
+                for (int d = 0; d < 3; d++) p[d] += a * v[q][d];
+            }
+            for (int i = 0; i < j; i++) {
+                const double pi = p[0] * axes[i][0] + p[1] * axes[i][1] + p[2] * axes[i][2];
+                for (int d = 0; d < 3; d++) p[d] -= pi * axes[i][d];
+            }
+            const double pn = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+            if (pn > bn + 1e-9) {
+                bn = pn;
+                for (int d = 0; d < 3; d++) best[d] = p[d] / pn;
+            }
+        }
+        for (int d = 0; d < 3; d++) axes[j][d] = best[d];
+    }
+}
+
 /* Formulation: the rigid motions of a body of nodes x_a with centroid c and
  * radius of gyration L are u(x) = t + (w / L) x (x - c), y = (t, w) in R^6.
  * A prescribed dof (a, d) asks u_d(x_a) = 0, a row e_d' B_a y of a 3x6
@@ -62,6 +90,14 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
             if (r0 != r1) up[r0 > r1 ? r0 : r1] = r0 < r1 ? r0 : r1; /* the lower index is the root */
         }
     for (long a = 0; a < nv; a++) up[a] = root(up, a);
+    long *first = malloc((size_t)nv * sizeof *first); /* a body's first tetrahedron, by root */
+    if (!first) {
+        free(up);
+        free(used);
+        return FFC_ERR_MEMORY;
+    }
+    for (long a = 0; a < nv; a++) first[a] = -1;
+    for (long e = nt - 1; e >= 0; e--) first[up[T[4 * e]]] = e;
     long found = 0;
     for (long b = 0; b < nv; b++) {
         if (!used[b] || up[b] != b) continue; /* b: a body's lowest node */
@@ -96,6 +132,7 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
             if (sym_eig(6, N, lam)) {
                 free(up);
                 free(used);
+                free(first);
                 return FFC_ERR_SINGULAR;
             }
             for (int q = 0; q < 6; q++) {
@@ -122,10 +159,11 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
         if (sym_eig(6, G, g)) {
             free(up);
             free(used);
+            free(first);
             return FFC_ERR_SINGULAR;
         }
-        int k = 0;
-        while (k < 6 && g[k] <= 1e-10 * (double)m) k++;
+        int k = 0; /* null: below round-off of G's largest eigenvalue (0 when nothing is prescribed) */
+        while (k < 6 && g[k] <= 1e-12 * g[5]) k++;
         if (k == 0) continue;
         memcpy(Z, G, sizeof Z); /* the null space: Z's first k columns */
         double W[36] = {0}, wv[6];
@@ -135,6 +173,7 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
         if (sym_eig(k, W, wv)) {
             free(up);
             free(used);
+            free(first);
             return FFC_ERR_SINGULAR;
         }
         /* the basis y_q = Z v_q (v_q: W's eigenvectors); the rotation parts
@@ -143,51 +182,37 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
         for (int q = 0; q < k; q++)
             for (int i = 0; i < k; i++)
                 for (int d = 0; d < 6; d++) Y[6 * q + d] += W[k * q + i] * Z[6 * i + d];
-        int q0 = 0; /* translations: lambda_q ~ 0, first (wv ascending) */
-        for (; q0 < k && wv[q0] <= 1e-12; q0++, found++) {
+        int q0 = 0; /* translations: lambda_q ~ 0, first (wv ascending); their span named (name_axes) */
+        while (q0 < k && wv[q0] <= 1e-12) q0++;
+        double dirs[3][3], n2[6];
+        const double *vq[6];
+        for (int q = 0; q < q0; q++) {
+            vq[q] = Y + 6 * q;
+            n2[q] = vq[q][0] * vq[q][0] + vq[q][1] * vq[q][1] + vq[q][2] * vq[q][2];
+        }
+        name_axes(q0, vq, n2, dirs);
+        for (int j = 0; j < q0; j++, found++) {
             if (found >= cap) continue;
-            const double *y = Y + 6 * q0;
             ffc_motion *o = &out[found];
             o->body = b;
-            double tn = sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]), sg = 1.0;
-            int big = 0;
-            for (int d = 1; d < 3; d++)
-                if (fabs(y[d]) > fabs(y[big])) big = d;
-            if (y[big] < 0) sg = -1.0; /* its largest component positive */
+            o->tet = first[b];
             for (int d = 0; d < 3; d++) {
                 o->x[d] = X[3 * b + d];
-                o->t[d] = sg * y[d] / tn;
+                o->t[d] = dirs[j][d];
                 o->w[d] = 0.0;
                 o->p[d] = c[d];
             }
             o->amount = alpha[0] * o->t[0] + alpha[1] * o->t[1] + alpha[2] * o->t[2];
         }
-        /* turns: unit axes u in the span S of the w_q, the coordinate axes'
-         * projections onto S taken greedily (the largest first, orthogonal
-         * to those taken), so that an axis along x, y or z is named so;
+        /* turns: unit axes u in the span of the w_q (name_axes);
          * y(u) = sum_q (w_q . u / lambda_q) y_q */
         double axes[3][3];
-        int na = 0;
-        for (; na < k - q0; na++) {
-            double best[3] = {0, 0, 0}, bn = -1.0;
-            for (int e = 0; e < 3; e++) {
-                double v[3] = {0, 0, 0};
-                for (int q = q0; q < k; q++) {
-                    const double *wq = Y + 6 * q + 3, a = wq[e] / wv[q];
-                    for (int d = 0; d < 3; d++) v[d] += a * wq[d];
-                }
-                for (int j = 0; j < na; j++) {
-                    const double pj = v[0] * axes[j][0] + v[1] * axes[j][1] + v[2] * axes[j][2];
-                    for (int d = 0; d < 3; d++) v[d] -= pj * axes[j][d];
-                }
-                const double vn = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-                if (vn > bn + 1e-9) {
-                    bn = vn;
-                    for (int d = 0; d < 3; d++) best[d] = v[d] / vn;
-                }
-            }
-            for (int d = 0; d < 3; d++) axes[na][d] = best[d];
+        const int na = k - q0;
+        for (int q = q0; q < k; q++) {
+            vq[q - q0] = Y + 6 * q + 3;
+            n2[q - q0] = wv[q];
         }
+        name_axes(na, vq, n2, axes);
         for (int j = 0; j < na; j++, found++) {
             if (found >= cap) continue;
             double y[6] = {0};
@@ -199,6 +224,7 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
             /* a screw: the axis, the slide along it per radian, the axis point nearest c */
             ffc_motion *o = &out[found];
             o->body = b;
+            o->tet = first[b];
             const double w[3] = {y[3] / L, y[4] / L, y[5] / L}, w2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
             const double tw = (y[0] * w[0] + y[1] * w[1] + y[2] * w[2]) / w2;
             const double tp[3] = {y[0] - tw * w[0], y[1] - tw * w[1], y[2] - tw * w[2]};
@@ -214,6 +240,7 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
     }
     free(up);
     free(used);
+    free(first);
     *n = found;
     return found > cap ? FFC_ERR_CAPACITY : FFC_OK;
 }

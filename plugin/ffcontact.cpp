@@ -1328,8 +1328,8 @@ double sceneAutoPenalty(const Named &, FFScene *const &C, long const &k, KN<doub
 // ffcFreeMotions(C, M) and ffcFreeMotions(C, u, M): the rigid motions of
 // the scene's bodies that its prescribed dofs (ffcFixed) leave free
 // (ffc_scene_free_motions), one row each: body (its lowest node), t x y z,
-// w x y z, p x y z, that node's x y z, and (with u) the amount of u along
-// it; returns the count.
+// w x y z, p x y z, that node's x y z, the amount of u along it (0 without
+// u), the body's first tetrahedron; returns the count.
 static long free_motions(const char *fn, FFScene *C, KN<double> *u, KNM<double> *M)
 {
     SceneData &d = need_scene(fn, C);
@@ -1341,7 +1341,7 @@ static long free_motions(const char *fn, FFScene *C, KN<double> *u, KNM<double> 
     if (st == FFC_ERR_CAPACITY) st = ffc_scene_free_motions(d.s, pu, n, m.data(), &n);
     if (st == FFC_ERR_EMPTY) fail(fn, "argument 'C': the scene was made without tetrahedra");
     if (st) scene_error(fn, st, -1, "the free rigid motions");
-    M->resize(n, 14);
+    M->resize(n, 15);
     for (long r = 0; r < n; r++) {
         (*M)(r, 0L) = m[r].body;
         for (long k = 0; k < 3; k++) {
@@ -1351,6 +1351,7 @@ static long free_motions(const char *fn, FFScene *C, KN<double> *u, KNM<double> 
             (*M)(r, 10 + k) = m[r].x[k];
         }
         (*M)(r, 13L) = m[r].amount;
+        (*M)(r, 14L) = m[r].tet;
     }
     return n;
 }

@@ -36,9 +36,10 @@ static void test_all_free(void **state)
         for (int i = 0; i < 6; i++) {
             assert_int_equal(o[i].body, b ? 5 : 0);
             for (int d = 0; d < 3; d++) assert_close(o[i].x[d], X[3 * o[i].body + d], 0.0);
-            const double *v = i < 3 ? o[i].t : o[i].w, *z = i < 3 ? o[i].w : o[i].t;
-            assert_close(dot(v, v), 1.0, 1e-12);
-            assert_close(dot(z, z), 0.0, 1e-24);
+            const double *v = i < 3 ? o[i].t : o[i].w;
+            assert_close(v[i % 3], 1.0, 1e-12);                 /* along x, y, z in turn */
+            if (i >= 3) assert_close(dot(o[i].t, o[i].t), 0.0, 1e-24); /* no slide */
+            assert_int_equal(o[i].tet, b ? 2 : 0);
             for (int j = i < 3 ? 0 : 3; j < i; j++) assert_close(dot(v, j < 3 ? o[j].t : o[j].w), 0.0, 1e-12);
             if (i >= 3)
                 for (int d = 0; d < 3; d++) assert_close(o[i].p[d], c[b][d], 1e-12);
@@ -89,6 +90,23 @@ static void test_held(void **state)
             for (int d = 0; d < 3; d++)
                 if (fixed[3 * a + d] != 0) assert_close(u[d], 0.0, 1e-12);
         }
+}
+
+/* body 1 held in x at every node: the free translations are y and z
+ * exactly (not a mix of them), with the turn about x through the centroid */
+static void test_translations_named(void **state)
+{
+    (void)state;
+    double fixed[3 * NV] = {0};
+    for (int i = 0; i < 15; i++) fixed[i] = 1;
+    for (int a = 5; a < NV; a++) fixed[3 * a] = 1;
+    ffc_motion m[6];
+    long n = 0;
+    assert_int_equal(ffc_rigid_free(NV, X, 3, T, fixed, NULL, 6, m, &n), FFC_OK);
+    assert_int_equal(n, 3);
+    assert_close(m[0].t[1], 1.0, 1e-12);
+    assert_close(m[1].t[2], 1.0, 1e-12);
+    assert_close(m[2].w[0], 1.0, 1e-12);
 }
 
 /* two nodes on the z axis held in x and y: free are the translation along
@@ -159,6 +177,7 @@ int main(void)
         cmocka_unit_test(test_all_free),
         cmocka_unit_test(test_held),
         cmocka_unit_test(test_axis),
+        cmocka_unit_test(test_translations_named),
         cmocka_unit_test(test_amounts),
         cmocka_unit_test(test_capacity_and_bad_input),
     };
