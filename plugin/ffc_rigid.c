@@ -28,6 +28,15 @@ static long root(long *up, long a)
     return a;
 }
 
+/* the rows of B_a (u_a = B_a y, y = (t, w)) at node position x: u = t + w x r,
+ * r = (x - c) / L */
+static void rigid_rows(const double x[3], const double c[3], double L, double B[3][6])
+{
+    const double r[3] = {(x[0] - c[0]) / L, (x[1] - c[1]) / L, (x[2] - c[2]) / L};
+    const double R[3][6] = {{1, 0, 0, 0, r[2], -r[1]}, {0, 1, 0, -r[2], 0, r[0]}, {0, 0, 1, r[1], -r[0], 0}};
+    memcpy(B, R, sizeof R);
+}
+
 /* Names the span of nb orthogonal vectors v[q] (squared lengths n2[q] > 0):
  * nb orthonormal axes[][3] in it, the coordinate axes' projections onto
  * the span taken greedily (the longest first, each orthogonal to those
@@ -60,9 +69,9 @@ static void name_axes(int nb, const double *const v[], const double n2[], double
  * radius of gyration L are u(x) = t + (w / L) x (x - c), y = (t, w) in R^6.
  * A prescribed dof (a, d) asks u_d(x_a) = 0, a row e_d' B_a y of a 3x6
  * B_a = [I, -[x_a - c]_x / L]; the motions free of all of them are the null
- * space of G = sum over prescribed (a, d) of B_a' e_d e_d' B_a (6x6, its
- * eigenvalues of order the prescribed nodes' count when not null), kept
- * below tol = 1e-10 x the body's node count. Within it the rotation parts'
+ * space of G = sum over prescribed (a, d) of B_a' e_d e_d' B_a (6x6): its
+ * eigenvalues up to 1e-12 x the largest (round-off; all of them when
+ * nothing is prescribed). Within it the rotation parts'
  * Gram W = Z_w' Z_w splits pure translations (its null space) from
  * rotations, whose axes are taken along the coordinate axes where their
  * span allows; a rotation w' = w / L with a translation t is a screw about
@@ -75,42 +84,35 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
     if (nv < 1 || nt < 1 || cap < 0) return FFC_ERR_SIZE;
     for (long i = 0; i < 4 * nt; i++)
         if (T[i] < 0 || T[i] >= nv) return FFC_ERR_INDEX;
-    long *up = malloc((size_t)nv * sizeof *up);
-    unsigned char *used = calloc((size_t)nv, 1);
-    if (!up || !used) {
-        free(up);
-        free(used);
-        return FFC_ERR_MEMORY;
+    long *up = malloc((size_t)nv * sizeof *up);        /* union-find parents, then each node's body (root) */
+    long *first = malloc((size_t)nv * sizeof *first);  /* a body's first tetrahedron, by root */
+    int st = FFC_OK;
+    if (!up || !first) {
+        st = FFC_ERR_MEMORY;
+        goto done;
     }
     for (long a = 0; a < nv; a++) up[a] = a;
     for (long e = 0; e < nt; e++)
         for (int k = 0; k < 4; k++) {
-            used[T[4 * e + k]] = 1;
             long r0 = root(up, T[4 * e]), r1 = root(up, T[4 * e + k]);
             if (r0 != r1) up[r0 > r1 ? r0 : r1] = r0 < r1 ? r0 : r1; /* the lower index is the root */
         }
     for (long a = 0; a < nv; a++) up[a] = root(up, a);
-    long *first = malloc((size_t)nv * sizeof *first); /* a body's first tetrahedron, by root */
-    if (!first) {
-        free(up);
-        free(used);
-        return FFC_ERR_MEMORY;
-    }
     for (long a = 0; a < nv; a++) first[a] = -1;
     for (long e = nt - 1; e >= 0; e--) first[up[T[4 * e]]] = e;
     long found = 0;
     for (long b = 0; b < nv; b++) {
-        if (!used[b] || up[b] != b) continue; /* b: a body's lowest node */
+        if (up[b] != b || first[b] < 0) continue; /* b: a body's lowest node (a node in no tetrahedron: none) */
         double c[3] = {0, 0, 0}, L2 = 0.0;
         long m = 0;
         for (long a = b; a < nv; a++)
-            if (used[a] && up[a] == b) {
+            if (up[a] == b) {
                 for (int d = 0; d < 3; d++) c[d] += X[3 * a + d];
                 m++;
             }
         for (int d = 0; d < 3; d++) c[d] /= (double)m;
         for (long a = b; a < nv; a++)
-            if (used[a] && up[a] == b)
+            if (up[a] == b)
                 for (int d = 0; d < 3; d++) L2 += (X[3 * a + d] - c[d]) * (X[3 * a + d] - c[d]);
         const double L = sqrt(L2 / (double)m);
         if (!(L > 0)) continue; /* a body of one point */
@@ -120,9 +122,9 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
         if (u) {
             double N[36] = {0}, rhs[6] = {0}, lam[6];
             for (long a = b; a < nv; a++) {
-                if (!used[a] || up[a] != b) continue;
-                const double r[3] = {(X[3 * a] - c[0]) / L, (X[3 * a + 1] - c[1]) / L, (X[3 * a + 2] - c[2]) / L};
-                const double B[3][6] = {{1, 0, 0, 0, r[2], -r[1]}, {0, 1, 0, -r[2], 0, r[0]}, {0, 0, 1, r[1], -r[0], 0}};
+                if (up[a] != b) continue;
+                double B[3][6];
+                rigid_rows(X + 3 * a, c, L, B);
                 for (int d = 0; d < 3; d++)
                     for (int i = 0; i < 6; i++) {
                         rhs[i] += B[d][i] * u[3 * a + d];
@@ -130,10 +132,8 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
                     }
             }
             if (sym_eig(6, N, lam)) {
-                free(up);
-                free(used);
-                free(first);
-                return FFC_ERR_SINGULAR;
+                st = FFC_ERR_SINGULAR;
+                goto done;
             }
             for (int q = 0; q < 6; q++) {
                 if (!(lam[q] > 1e-12 * lam[5])) continue; /* (a body of collinear nodes) */
@@ -145,10 +145,9 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
         double G[36] = {0};
         if (fixed)
             for (long a = b; a < nv; a++) {
-                if (!used[a] || up[a] != b) continue;
-                const double r[3] = {(X[3 * a] - c[0]) / L, (X[3 * a + 1] - c[1]) / L, (X[3 * a + 2] - c[2]) / L};
-                /* the rows of B_a: u = t + w x r */
-                const double B[3][6] = {{1, 0, 0, 0, r[2], -r[1]}, {0, 1, 0, -r[2], 0, r[0]}, {0, 0, 1, r[1], -r[0], 0}};
+                if (up[a] != b) continue;
+                double B[3][6];
+                rigid_rows(X + 3 * a, c, L, B);
                 for (int d = 0; d < 3; d++) {
                     if (fixed[3 * a + d] == 0) continue;
                     for (int i = 0; i < 6; i++)
@@ -157,10 +156,8 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
             }
         double g[6], Z[36];
         if (sym_eig(6, G, g)) {
-            free(up);
-            free(used);
-            free(first);
-            return FFC_ERR_SINGULAR;
+            st = FFC_ERR_SINGULAR;
+            goto done;
         }
         int k = 0; /* null: below round-off of G's largest eigenvalue (0 when nothing is prescribed) */
         while (k < 6 && g[k] <= 1e-12 * g[5]) k++;
@@ -171,10 +168,8 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
             for (int j = 0; j < k; j++)
                 for (int d = 3; d < 6; d++) W[k * j + i] += Z[6 * i + d] * Z[6 * j + d];
         if (sym_eig(k, W, wv)) {
-            free(up);
-            free(used);
-            free(first);
-            return FFC_ERR_SINGULAR;
+            st = FFC_ERR_SINGULAR;
+            goto done;
         }
         /* the basis y_q = Z v_q (v_q: W's eigenvectors); the rotation parts
          * of those with lambda_q > 0 are orthogonal with |w_q|^2 = lambda_q */
@@ -238,9 +233,10 @@ int ffc_rigid_free(long nv, const double X[], long nt, const long T[], const dou
             o->amount = (alpha[3] * o->w[0] + alpha[4] * o->w[1] + alpha[5] * o->w[2]) / L;
         }
     }
-    free(up);
-    free(used);
-    free(first);
     *n = found;
-    return found > cap ? FFC_ERR_CAPACITY : FFC_OK;
+    if (found > cap) st = FFC_ERR_CAPACITY;
+done:
+    free(up);
+    free(first);
+    return st;
 }

@@ -21,6 +21,18 @@ static void motion_at(const ffc_motion *o, const double x[3], double u[3])
 
 static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
+/* each of the n motions (of body 1: nodes 5-8) is zero on every prescribed dof */
+static void assert_held_dofs_still(const ffc_motion m[], long n, const double fixed[3 * NV])
+{
+    for (long i = 0; i < n; i++)
+        for (int a = 5; a < NV; a++) {
+            double u[3];
+            motion_at(&m[i], X + 3 * a, u);
+            for (int d = 0; d < 3; d++)
+                if (fixed[3 * a + d] != 0) assert_close(u[d], 0.0, 1e-12);
+        }
+}
+
 /* nothing prescribed: per body 3 translations then 3 turns about its
  * centroid, each set orthonormal, no slide */
 static void test_all_free(void **state)
@@ -70,26 +82,14 @@ static void test_held(void **state)
     /* named along the coordinate axes they span: x, then y */
     assert_close(m[1].w[0], 1.0, 1e-12);
     assert_close(m[2].w[1], 1.0, 1e-12);
-    for (int i = 0; i < 3; i++)
-        for (int a = 5; a < NV; a++) { /* the nodes of body 1, whose motions these are */
-            double u[3];
-            motion_at(&m[i], X + 3 * a, u);
-            for (int d = 0; d < 3; d++)
-                if (fixed[3 * a + d] != 0) assert_close(u[d], 0.0, 1e-12);
-        }
+    assert_held_dofs_still(m, n, fixed);
     /* node 8 (z = 2) held in x as well: the turn about y (in the plane
      * z = 1) moves it in x and goes; the translation along z and the turn
      * about x stay */
     fixed[3 * 8] = 1;
     assert_int_equal(ffc_rigid_free(NV, X, 3, T, fixed, NULL, 6, m, &n), FFC_OK);
     assert_int_equal(n, 2);
-    for (int i = 0; i < 2; i++)
-        for (int a = 5; a < NV; a++) { /* the nodes of body 1, whose motions these are */
-            double u[3];
-            motion_at(&m[i], X + 3 * a, u);
-            for (int d = 0; d < 3; d++)
-                if (fixed[3 * a + d] != 0) assert_close(u[d], 0.0, 1e-12);
-        }
+    assert_held_dofs_still(m, n, fixed);
 }
 
 /* body 1 held in x at every node: the free translations are y and z
