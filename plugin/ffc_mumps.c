@@ -38,6 +38,33 @@ static void call(ffc__mumps *m, int job)
     dmumps_c(&m->id);
 }
 
+/* a workspace that MUMPS's analysis estimated too small (integer, real,
+ * send or receive buffers: INFOG(1) = -8, -9, -11, -14, -15, -17, -20).
+ * Its dynamic scheduling maps the fronts by the ranks' loads at run time,
+ * so on oversubscribed cores the same matrix may need more than the
+ * estimate in one run and not in the next. */
+static int short_workspace(int e)
+{
+    return e == -8 || e == -9 || e == -11 || e == -14 || e == -15 || e == -17 || e == -20;
+}
+
+/* job 4 (analysis and factorization) or 6 (and solve), run again with the
+ * estimated workspace doubled, then 4 and 8 times (through ICNTL(14), the
+ * percentage added to the estimate) while MUMPS finds it short; INFOG(1) is the same on every
+ * rank, so all ranks loop alike. A solve's right-hand side (job 6: rhs,
+ * overwritten) is restored from b[n] before each new try. */
+static void call_relaxed(ffc__mumps *m, int job, const double *b, long n)
+{
+    const MUMPS_INT relax = m->id.ICNTL(14) > 0 ? m->id.ICNTL(14) : 20;
+    call(m, job);
+    for (int k = 1; k <= 3 && short_workspace(m->id.INFOG(1)); k++) {
+        m->id.ICNTL(14) = relax * (1 << k) + 100 * ((1 << k) - 1);
+        if (b && m->id.rhs && m->rank == 0) memcpy(m->id.rhs, b, (size_t)n * sizeof(double));
+        call(m, job);
+    }
+    m->id.ICNTL(14) = relax;
+}
+
 /* a MUMPS instance of symmetry sym over the communicator fcomm (the
  * host works too); FFC_ERR_UNAVAILABLE before MPI_Init */
 static int start(ffc__mumps *m, int fcomm, int sym)
@@ -121,10 +148,10 @@ int ffc__mumps_factor(ffc__mumps *m, long n, long nz, const int ti[], const int 
     id->CNTL(3) = 1e-12;     /* ... below 1e-12 of K's norm: CHOLMOD's rcond test */
     id->n = (MUMPS_INT)n;
     m->factored = 0;
-    call(m, 4);  /* analysis and factorization */
+    call_relaxed(m, 4, NULL, 0);  /* analysis and factorization */
     const int e = id->INFOG(1);
     if (e == -10 || e == -40 || (e >= 0 && (id->INFOG(28) > 0 || id->INFOG(12) > 0))) return FFC_ERR_SINGULAR;
-    if (e == -13 || e == -9 || e == -8 || e == -14 || e == -15 || e == -17 || e == -19) return FFC_ERR_MEMORY;
+    if (e == -13 || e == -19 || short_workspace(e)) return FFC_ERR_MEMORY;
     if (e < 0) return FFC_ERR_SINGULAR;
     m->mb_rank = id->INFO(16);
     m->mb_max = id->INFOG(21);
@@ -180,7 +207,7 @@ int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], 
         id->rhs = x;
         id->nrhs = 1;
         id->lrhs = (MUMPS_INT)n;
-        call(&m, 6);  /* analysis, factorization and solve */
+        call_relaxed(&m, 6, b, n);  /* analysis, factorization and solve */
         const int e = id->INFOG(1);
         if (e == -10) st = FFC_ERR_SINGULAR;
         else if (e < 0) st = FFC_ERR_MEMORY;

@@ -15,12 +15,14 @@ mkdir -p "$dir"
 fail=0
 # the value of "key" in a case's JSON
 val() { sed -n "s/^ *\"$2\": \([-0-9.eE+]*\),*\$/\1/p" "$1" | head -1; }
+# a failed run's error lines (FreeFEM's, the ranks' and MPI's) and its end
+why() { grep -n -i -m 12 "error\|ff: rank\|abort\|signal" "$1"; echo "    ..."; tail -8 "$1"; }
 check() {   # check <name> <case> "<fields>" <options...>
     name=$1; case=$2; fields=$3; shift 3
     sh scripts/ff "scripts/$case.edp" "$@" -out "$dir/$name-1" > "$dir/$name-1.log" 2>&1 \
-        || { echo "FAIL $name: one process (exit $?)"; tail -5 "$dir/$name-1.log"; fail=1; return; }
+        || { echo "FAIL $name: one process (exit $?)"; why "$dir/$name-1.log"; fail=1; return; }
     sh scripts/ff -np "$np" "scripts/$case.edp" "$@" -out "$dir/$name-$np" > "$dir/$name-$np.log" 2>&1 \
-        || { echo "FAIL $name: $np ranks (exit $?)"; tail -5 "$dir/$name-$np.log"; fail=1; return; }
+        || { echo "FAIL $name: $np ranks (exit $?)"; why "$dir/$name-$np.log"; fail=1; return; }
     r=$(val "$dir/$name-$np.json" ranks)
     case "$*" in *"-finite 1"*)   # finite deformation, P1: each rank assembles its part
         grep -q '"bulk_assembly": "by rank"' "$dir/$name-$np.json" || { echo "FAIL $name: not assembled by rank"; fail=1; } ;;

@@ -181,6 +181,44 @@ static void test_general_solve(void **state)
     assert_int_equal(ffc_parallel_solve(&chol, NG, nt, gi, gj, gv, bb, xs, &bad), FFC_ERR_UNAVAILABLE);
 }
 
+/* a matrix whose pivoting overruns MUMPS's workspace estimate: rows of
+ * a tiny diagonal (1e-8) in the first half and three random pairs of
+ * entries each, which on 2 ranks stops the default estimate with
+ * INFOG(1) = -9; ffc_parallel_solve runs it again with more room and
+ * solves it, as the dense elimination does (the backward error below
+ * 1e-12 of |A| |x| + |b|: partial pivoting with refinement) */
+#define NP 200
+static void test_pivoting_workspace(void **state)
+{
+    (void)state;
+    int fc;
+    ffc_mpi_world(NULL, NULL, &fc);
+    static long pi[7 * NP], pj[7 * NP];
+    static double pv[7 * NP], bb[NP], x[NP];
+    uint64_t seed = 7;   /* (seeds 1, 3 and 7 overrun the estimate; 2, 4, 5, 6 and 8 do not) */
+    long nt = 0;
+    for (int i = 0; i < NP; i++) {
+        if (i < NP / 2) { pi[nt] = i; pj[nt] = i; pv[nt] = 1e-8; nt++; }
+        for (int k = 0; k < 3; k++) {
+            const int j = (int)test_rand(&seed, 0, NP - 1e-9);
+            pi[nt] = i; pj[nt] = j; pv[nt] = test_rand(&seed, 0, 1); nt++;
+            pi[nt] = j; pj[nt] = i; pv[nt] = test_rand(&seed, 0, 1); nt++;
+        }
+        bb[i] = 1.0;
+    }
+    long bad = -1;
+    const ffc_parallel shared = {FFC_ENGINE_MUMPS, fc, 0};
+    assert_int_equal(ffc_parallel_solve(&shared, NP, nt, pi, pj, pv, bb, x, &bad), FFC_OK);
+    static double r[NP], scale[NP];
+    for (int i = 0; i < NP; i++) { r[i] = -bb[i]; scale[i] = fabs(bb[i]); }
+    for (long t = 0; t < nt; t++) {
+        r[pi[t]] += pv[t] * x[pj[t]];
+        scale[pi[t]] += fabs(pv[t] * x[pj[t]]);
+    }
+    for (int i = 0; i < NP; i++) assert_true(fabs(r[i]) <= 1e-12 * scale[i]);
+    assert_close(rank_spread(NP, x), 0.0, 0.0);
+}
+
 /* the dense LU shared over the ranks (the condensed Newton's, ScaLAPACK)
  * against a dense elimination of the whole matrix on every rank: 1e-12
  * (diagonally dominant, condition below 10); a singular one refused */
@@ -254,6 +292,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_same_as_cholmod),
         cmocka_unit_test(test_singular),
         cmocka_unit_test(test_general_solve),
+        cmocka_unit_test(test_pivoting_workspace),
         cmocka_unit_test(test_shared_lu),
         cmocka_unit_test(test_bad_engine),
     };
