@@ -31,7 +31,8 @@ enum {
     FFC_ERR_INVERTED = -14,       /* a facet turned inside out (normal reversed) */
     FFC_ERR_SINGULAR = -15,       /* a linear system is singular (zero pivot) */
     FFC_ERR_FUSED = -16,          /* slave and master surfaces share their nodes */
-    FFC_ERR_UNAVAILABLE = -17     /* this build lacks the engine asked for (MPI, MUMPS) */
+    FFC_ERR_UNAVAILABLE = -17,    /* this build lacks the engine asked for (MPI, MUMPS) */
+    FFC_ERR_INTERIOR = -18        /* a contact facet lies inside the volume mesh (two tetrahedra share it) */
 };
 
 /* Human-readable text of a status code (static string, never NULL). */
@@ -677,7 +678,10 @@ int ffc_scene_effects(const ffc_scene *s, ffc_effects *fx);
  * Fm[nfm*nper] (node indices; outward orientation) with options o;
  * returns its index (>= 0) or an error (FFC_ERR_INDEX: *bad = the facet
  * entry at fault; FFC_ERR_FUSED: *bad = a slave facet whose vertices are
- * all master nodes, the bodies being meshed as one). */
+ * all master nodes, the bodies being meshed as one; FFC_ERR_INTERIOR: *bad
+ * = a facet that two of the scene's tetrahedra share, so that the bodies
+ * on its two sides are one mesh there: a slave facet f as f, a master
+ * facet f as nfs + f). */
 int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const long Fm[],
                        const ffc_pair_opts *o, long *bad);
 

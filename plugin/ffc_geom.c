@@ -30,6 +30,7 @@ const char *ffc_strerror(int status)
     case FFC_ERR_SINGULAR: return "singular linear system (zero pivot)";
     case FFC_ERR_FUSED: return "slave and master surfaces share their nodes";
     case FFC_ERR_UNAVAILABLE: return "this build lacks the engine asked for (MPI, parallel MUMPS)";
+    case FFC_ERR_INTERIOR: return "a contact facet lies inside the mesh (two tetrahedra share it)";
     default: return "unknown status";
     }
 }

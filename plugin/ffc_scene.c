@@ -202,6 +202,41 @@ static int check_fused(int nper, long nfs, const long Fs[], long nfm, const long
     return st;
 }
 
+/* FFC_ERR_INTERIOR (*bad = f for slave facet f, nfs + f for master facet
+ * f) when a facet's three corners belong to two of the scene's
+ * tetrahedra: the facet lies inside the volume mesh (a labelled surface
+ * between two regions meshed as one, gmsh's BooleanFragments), its two
+ * sides share their nodes and can neither separate nor press on each
+ * other. A face on the boundary has one tetrahedron. Nothing to check
+ * without tetrahedra (nt = 0). */
+static int check_interior(const ffc_scene *s, long nfs, const long Fs[], long nfm, const long Fm[], long *bad)
+{
+    if (s->nt <= 0) return FFC_OK;
+    const long nv = s->nv, nt = s->nt;
+    long *start = calloc(nv + 1, sizeof *start), *tets = malloc(4 * nt * sizeof *tets);
+    if (!start || !tets) { free(start); free(tets); return FFC_ERR_MEMORY; }
+    /* the tetrahedra at each node (CSR: start[v] .. start[v + 1]) */
+    for (long i = 0; i < 4 * nt; i++) start[s->T[i] + 1]++;
+    for (long v = 0; v < nv; v++) start[v + 1] += start[v];
+    for (long i = 0; i < 4 * nt; i++) tets[start[s->T[i]]++] = i / 4;
+    for (long v = nv; v > 0; v--) start[v] = start[v - 1];
+    start[0] = 0;
+    int st = FFC_OK;
+    for (long f = 0; f < nfs + nfm && !st; f++) {
+        const long *c = f < nfs ? Fs + s->nper * f : Fm + s->nper * (f - nfs);
+        int shared = 0;
+        for (long k = start[c[0]]; k < start[c[0] + 1]; k++) {
+            const long *t = s->T + 4 * tets[k];
+            int has1 = 0, has2 = 0;
+            for (int j = 0; j < 4; j++) { has1 |= t[j] == c[1]; has2 |= t[j] == c[2]; }
+            shared += has1 && has2;
+        }
+        if (shared > 1) { *bad = f; st = FFC_ERR_INTERIOR; }
+    }
+    free(start); free(tets);
+    return st;
+}
+
 /* Multiplier arrays of the pair for its law (sizes nv or nl), zeroed; on
  * failure the pair keeps the arrays it had. */
 static int pair_alloc_lambda(scene_pair *p, long nv)
@@ -308,6 +343,7 @@ int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const 
     if ((st = check_nodes(nfs * s->nper, Fs, s->nv, bad))) return st;
     if ((st = check_nodes(nfm * s->nper, Fm, s->nv, bad))) return st;
     if ((st = check_fused(s->nper, nfs, Fs, nfm, Fm, s->nv, bad))) return st;
+    if ((st = check_interior(s, nfs, Fs, nfm, Fm, bad))) return st;
     if ((o->method == FFC_METHOD_NTS || o->method == FFC_METHOD_MORTAR || o->dual_t) && s->nper != 3) return FFC_ERR_NODES;
     if (s->np > 0 && s->p[0].o.method != o->method) return FFC_ERR_VALUE; /* one method per scene */
     if (s->np == s->cap) {

@@ -909,6 +909,16 @@ long addPair(const Named &nm, FFScene *const &C, KN<long> *const &sl, KN<long> *
           << "on each side (in gmsh: no BooleanFragments or Coherence between bodies in contact, no merged points)";
         fail(fn, s.str());
     }
+    if (k == FFC_ERR_INTERIOR) {
+        const bool sl = bad < nfs;
+        std::ostringstream s;
+        s << "argument '" << (sl ? "slaveLabs" : "masterLabs") << "': facet " << (sl ? bad : bad - nfs) << " (labels "
+          << labels_text(sl ? S : M) << ") lies inside the mesh, with tetrahedra on both sides: the bodies there are "
+          << "meshed as one and share their nodes, so they can neither separate nor press on each other; contact needs "
+          << "separate nodes on each side (in gmsh: no BooleanFragments or Coherence between bodies in contact, no "
+          << "merged points)";
+        fail(fn, s.str());
+    }
     if (k < 0) scene_error(fn, k, bad, "the pair");
     d.labels.push_back("slave " + labels_text(S) + " / master " + labels_text(M));
     d.tetS.push_back(tS);

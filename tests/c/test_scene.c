@@ -468,9 +468,36 @@ static void test_nts_pairs(void **state)
     ffc_scene_free(q);
 }
 
+/* a contact facet between two tetrahedra (inside the mesh: the bodies on
+ * its sides meshed as one) refused, slave or master; the same facet on
+ * the boundary (one tetrahedron) accepted */
+static void test_interior_facet(void **state)
+{
+    (void)state;
+    const double X[5 * 3] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0.2, 0.2, 1, 0.2, 0.2, -1};
+    const long T[8] = {0, 1, 2, 3, 0, 1, 2, 4};
+    const long mid[3] = {0, 2, 1}, side[3] = {0, 1, 3};
+    ffc_effects fx = {0, 0, 0};
+    ffc_pair_opts o = opts(0.0);
+    long bad = -1;
+    ffc_scene *s = NULL;
+    assert_int_equal(ffc_scene_create(3, 5, X, 2, T, &fx, &s), FFC_OK);
+    assert_int_equal(ffc_scene_add_pair(s, 1, mid, 1, side, &o, &bad), FFC_ERR_INTERIOR);
+    assert_int_equal(bad, 0);
+    assert_int_equal(ffc_scene_add_pair(s, 1, side, 1, mid, &o, &bad), FFC_ERR_INTERIOR);
+    assert_int_equal(bad, 1);   /* (master facet 0, after the slave one) */
+    assert_int_equal(ffc_scene_npairs(s), 0);
+    assert_non_null(strstr(ffc_strerror(FFC_ERR_INTERIOR), "inside the mesh"));
+    ffc_scene_free(s);
+    assert_int_equal(ffc_scene_create(3, 5, X, 1, T, &fx, &s), FFC_OK);   /* only the upper tetrahedron */
+    assert_int_equal(ffc_scene_add_pair(s, 1, mid, 1, side, &o, &bad), 0);
+    ffc_scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_interior_facet),
         cmocka_unit_test(test_two_pairs_independent),
         cmocka_unit_test(test_augment_shared_array),
         cmocka_unit_test(test_assembly_is_sum),
