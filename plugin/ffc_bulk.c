@@ -32,8 +32,9 @@ struct ffc__bulk {
     cholmod_factor *L;         /* of K + diag(sh); NULL until the first solve */
     cholmod_dense *B, *X, *Y, *E;       /* one right-hand side and solve2's work */
     cholmod_dense *Bb, *Xb, *Yb, *Eb;   /* a block of BLOCK right-hand sides */
-    ffc__mumps *mp;            /* parallel MUMPS in place of CHOLMOD's factor (NULL: CHOLMOD); B and Bb
-                                  are then its right-hand sides, solved in place */
+    ffc__mumps *mp;            /* parallel MUMPS in place of CHOLMOD's factor (NULL: CHOLMOD); B is then
+                                  its right-hand side, solved in place, and Bb the zeroed work vector of
+                                  the compliance columns (entries of K^-1, add_columns_inverse) */
     int factored;              /* 1: a factor (L, or MUMPS's) is held */
     ffc__pdense *pd;           /* with MUMPS: the dense LU shared over the same ranks (NULL: none) */
     int kdist;                 /* 1: the kept LU (ka, kdof) is pd's, not klu */
@@ -337,11 +338,45 @@ static int factorize_first(ffc__bulk *b, long nnew, const long nd[])
     return st;
 }
 
+/* With MUMPS: the compliance columns of the dofs nd[nnew] as entries of
+ * K^-1 on the rows they are read at (C's dofs, the new ones and the rows
+ * R), all in one pruned solve (ffc__mumps_inverse); each column is put
+ * into the dense work vector on those rows only, handed to the same
+ * bookkeeping as a back-solve's, and cleared again. */
+static int add_columns_inverse(ffc__bulk *b, long nnew, const long nd[])
+{
+    const long n = b->n, m0 = b->m;
+    long *rows = malloc((size_t)(m0 + nnew + b->nr) * sizeof *rows), nrows = 0;
+    unsigned char *seen = calloc((size_t)n, 1);
+    if (!rows || !seen) { free(rows); free(seen); return FFC_ERR_MEMORY; }
+    for (long k = 0; k < m0 + nnew + b->nr; k++) {   /* C, the new dofs, R: each once */
+        const long i = k < m0 ? b->dof[k] : k < m0 + nnew ? nd[k - m0] : b->rows[k - m0 - nnew];
+        if (!seen[i]) { seen[i] = 1; rows[nrows++] = i; }
+    }
+    free(seen);
+    double *X = malloc((size_t)nrows * nnew * sizeof *X);
+    int st = X ? ffc__mumps_inverse(b->mp, nnew, nd, nrows, rows, X) : FFC_ERR_MEMORY;
+    double *x = b->Bb->x;   /* (zero, and left zero) */
+    for (long k = 0; k < nnew && !st; k++) {
+        for (long r = 0; r < nrows; r++) x[rows[r]] = X[r + k * nrows];
+        st = ffc_reduced_add(n, b->ld, b->m, b->dof, b->G, x, nd[k]);
+        for (long r = 0; r < b->nr && !st; r++) b->H[r + b->m * b->nr] = x[b->rows[r]];
+        for (long r = 0; r < nrows; r++) x[rows[r]] = 0.0;
+        if (!st) b->m++;
+    }
+    free(rows); free(X);
+    if (st) return st;
+    b->info.backsolves += nnew;
+    b->info.columns += nnew;
+    return FFC_OK;
+}
+
 /* the compliance columns of the dofs nd[nnew], BLOCK back-solves at a time */
 static int add_columns(ffc__bulk *b, long nnew, const long nd[])
 {
     int st = grow(b, b->m + nnew);
     if (st) return st;
+    if (b->mp) return add_columns_inverse(b, nnew, nd);
     const long n = b->n;
     for (long k0 = 0; k0 < nnew; k0 += BLOCK) {
         const long nb = nnew - k0 < BLOCK ? nnew - k0 : BLOCK;

@@ -164,13 +164,84 @@ int ffc__mumps_solve(ffc__mumps *m, long nrhs, double B[])
     if (!m || !B) return FFC_ERR_NULL;
     if (!m->factored) return FFC_ERR_EMPTY;
     if (nrhs <= 0 || (long)m->id.n * nrhs > 2147483647L) return FFC_ERR_SIZE;
-    m->id.rhs = B;
+    /* the host's alone: MUMPS refuses a right-hand side on the other ranks
+     * in a later sparse solve (ffc__mumps_inverse) once one was given */
+    m->id.rhs = m->rank == 0 ? B : NULL;
     m->id.nrhs = (MUMPS_INT)nrhs;
     m->id.lrhs = m->id.n;
     call(m, 3);
     if (m->id.INFOG(1) < 0) return FFC_ERR_MEMORY;
     MPI_Bcast(B, (int)((long)m->id.n * nrhs), MPI_DOUBLE, 0, m->comm);
     return FFC_OK;
+}
+
+typedef struct { long key, pos; } keyed;   /* an index and where it stands in its list */
+static int by_key(const void *a, const void *b)
+{
+    const long x = ((const keyed *)a)->key, y = ((const keyed *)b)->key;
+    return (x > y) - (x < y);
+}
+
+int ffc__mumps_inverse(ffc__mumps *m, long ncols, const long cols[], long nrows, const long rows[], double X[])
+{
+    if (!m || (ncols > 0 && (!cols || !rows || !X))) return FFC_ERR_NULL;
+    if (!m->factored) return FFC_ERR_EMPTY;
+    const long n = m->id.n, nz = ncols * nrows;
+    if (ncols < 0 || nrows <= 0 || nz > 2147483646L) return FFC_ERR_SIZE;
+    if (ncols == 0) return FFC_OK;
+    for (long k = 0; k < ncols; k++) if (cols[k] < 0 || cols[k] >= n) return FFC_ERR_INDEX;
+    for (long k = 0; k < nrows; k++) if (rows[k] < 0 || rows[k] >= n) return FFC_ERR_INDEX;
+    /* MUMPS takes the entries column by column in increasing column order,
+     * the rows of each in increasing order: cp and rp order cols and rows */
+    keyed *cp = malloc((size_t)ncols * sizeof *cp), *rp = malloc((size_t)nrows * sizeof *rp);
+    MUMPS_INT *ptr = malloc((size_t)(n + 1) * sizeof *ptr), *irs = malloc((size_t)nz * sizeof *irs);
+    double *rs = malloc((size_t)nz * sizeof *rs);
+    int ok = cp && rp && ptr && irs && rs, all = 0, st = FFC_OK;
+    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, m->comm);
+    if (!all) st = FFC_ERR_MEMORY;
+    if (!st) {
+        for (long k = 0; k < ncols; k++) cp[k] = (keyed){cols[k], k};
+        for (long k = 0; k < nrows; k++) rp[k] = (keyed){rows[k], k};
+        qsort(cp, (size_t)ncols, sizeof *cp, by_key);
+        qsort(rp, (size_t)nrows, sizeof *rp, by_key);
+        for (long k = 1; k < ncols && !st; k++) if (cp[k].key == cp[k - 1].key) st = FFC_ERR_VALUE;
+        for (long k = 1; k < nrows && !st; k++) if (rp[k].key == rp[k - 1].key) st = FFC_ERR_VALUE;
+    }
+    if (!st) {
+        long p = 0, c = 0;
+        for (long j = 0; j < n; j++) {
+            ptr[j] = (MUMPS_INT)(p + 1);
+            if (c < ncols && cp[c].key == j) {
+                for (long r = 0; r < nrows; r++) irs[p++] = (MUMPS_INT)rp[r].key + 1;
+                c++;
+            }
+        }
+        ptr[n] = (MUMPS_INT)(p + 1);
+        DMUMPS_STRUC_C *id = &m->id;
+        id->ICNTL(30) = 1;     /* entries of the inverse: both solves pruned to the rows and columns asked for */
+        id->rhs = NULL;        /* (entries of the inverse are returned in rhs_sparse) */
+        id->nrhs = (MUMPS_INT)n;
+        id->lrhs = (MUMPS_INT)n;
+        if (m->rank == 0) {  /* (the host's input; the other ranks' must stay unset) */
+            id->nz_rhs = (MUMPS_INT)nz;
+            id->irhs_ptr = ptr;
+            id->irhs_sparse = irs;
+            id->rhs_sparse = rs;
+        }
+        call(m, 3);
+        id->ICNTL(30) = 0;
+        id->irhs_ptr = id->irhs_sparse = NULL;
+        id->rhs_sparse = NULL;
+        id->nz_rhs = 0;
+        if (id->INFOG(1) < 0) st = FFC_ERR_MEMORY;
+        else {
+            MPI_Bcast(rs, (int)nz, MPI_DOUBLE, 0, m->comm);
+            for (long c2 = 0; c2 < ncols; c2++)
+                for (long r = 0; r < nrows; r++) X[rp[r].pos + cp[c2].pos * nrows] = rs[r + c2 * nrows];
+        }
+    }
+    free(cp); free(rp); free(ptr); free(irs); free(rs);
+    return st;
 }
 
 int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], const long Tj[], const double Tv[],
@@ -204,7 +275,7 @@ int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], 
                                     saddle matrices with tgv rows lost 1e-5 of a pressure without them */
         id->n = (MUMPS_INT)n;
         memcpy(x, b, (size_t)n * sizeof(double));
-        id->rhs = x;
+        id->rhs = m.rank == 0 ? x : NULL;   /* (the host's alone, as in ffc__mumps_solve) */
         id->nrhs = 1;
         id->lrhs = (MUMPS_INT)n;
         call_relaxed(&m, 6, b, n);  /* analysis, factorization and solve */
@@ -249,6 +320,11 @@ int ffc__mumps_factor(ffc__mumps *m, long n, long nz, const int ti[], const int 
 int ffc__mumps_solve(ffc__mumps *m, long nrhs, double B[])
 {
     (void)m; (void)nrhs; (void)B;
+    return FFC_ERR_UNAVAILABLE;
+}
+int ffc__mumps_inverse(ffc__mumps *m, long ncols, const long cols[], long nrows, const long rows[], double X[])
+{
+    (void)m; (void)ncols; (void)cols; (void)nrows; (void)rows; (void)X;
     return FFC_ERR_UNAVAILABLE;
 }
 void ffc__mumps_info(const ffc__mumps *m, int *ranks, double *mb_rank, double *mb_max)

@@ -17,6 +17,14 @@ void ffc__mumps_free(ffc__mumps *m);
 int ffc__mumps_factor(ffc__mumps *m, long n, long nz, const int ti[], const int tj[], const double tv[]);
 /* B[n*nrhs] (column-major) overwritten by the solution, on every rank. */
 int ffc__mumps_solve(ffc__mumps *m, long nrhs, double B[]);
+/* Entries of the inverse of the factorized matrix:
+ * X[r + c * nrows] = (K^-1)[rows[r], cols[c]] (0-based; no index twice in
+ * either list), on every rank.  MUMPS prunes its forward and backward
+ * solves to the tree paths of the rows and columns asked for (ICNTL(30)),
+ * which makes a block of compliance columns on a contact surface several
+ * times cheaper than as dense right-hand sides.  FFC_ERR_VALUE for an index
+ * given twice, FFC_ERR_EMPTY before a factorization. */
+int ffc__mumps_inverse(ffc__mumps *m, long ncols, const long cols[], long nrows, const long rows[], double X[]);
 /* ranks, and this rank's and the largest rank's factorization memory (MB) */
 void ffc__mumps_info(const ffc__mumps *m, int *ranks, double *mb_rank, double *mb_max);
 

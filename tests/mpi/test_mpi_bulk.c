@@ -1,8 +1,9 @@
 /* test_mpi_bulk.c: a scene's bulk factorized by parallel MUMPS over the
  * ranks of MPI_COMM_WORLD (run by mpiexec, 2 ranks in make test): the
- * same solutions as CHOLMOD's in one process (block solves of many
- * contact dofs included), every rank with the same bits, a singular K
- * refused on every rank, the engine's bad input. */
+ * same solutions as CHOLMOD's in one process (the compliance columns of
+ * many contact dofs included, as entries of K^-1), every rank with the
+ * same bits, a singular K refused on every rank, entries of the inverse
+ * against a dense elimination, the engine's bad input. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +12,7 @@
 
 #include "ffc_test.h"
 #include "ffc_pdense.h"   /* (internal: the shared dense LU) */
+#include "ffc_mumps.h"    /* (internal: the bulk's MUMPS instance) */
 
 #define NV 300
 #define N (3 * NV)
@@ -181,6 +183,54 @@ static void test_general_solve(void **state)
     assert_int_equal(ffc_parallel_solve(&chol, NG, nt, gi, gj, gv, bb, xs, &bad), FFC_ERR_UNAVAILABLE);
 }
 
+/* entries of K^-1 (ffc__mumps_inverse) on rows other than the columns,
+ * in no particular order, after a dense solve (whose right-hand side MUMPS
+ * must not keep on the other ranks): a dense elimination's to 1e-13 (K
+ * tridiagonal 4, -1: condition below 3); the refusals */
+#define NI 30
+static void test_inverse_entries(void **state)
+{
+    (void)state;
+    int fc;
+    ffc_mpi_world(NULL, NULL, &fc);
+    ffc__mumps *m = NULL;
+    assert_int_equal(ffc__mumps_create(fc, &m), FFC_OK);
+    int ti[2 * NI], tj[2 * NI];
+    double tv[2 * NI], A[NI * NI] = {0};
+    long nz = 0;
+    for (int i = 0; i < NI; i++) {
+        ti[nz] = i; tj[nz] = i; tv[nz] = 4.0; nz++;
+        A[i * NI + i] = 4.0;
+        if (i > 0) { ti[nz] = i; tj[nz] = i - 1; tv[nz] = -1.0; nz++; A[i * NI + i - 1] = A[(i - 1) * NI + i] = -1.0; }
+    }
+    const long cols[3] = {7, 2, 19}, rows[5] = {0, 5, 2, 29, 7};
+    double X[15], B[NI];
+    assert_int_equal(ffc__mumps_inverse(m, 3, cols, 5, rows, X), FFC_ERR_EMPTY);
+    assert_int_equal(ffc__mumps_factor(m, NI, nz, ti, tj, tv), FFC_OK);
+    for (int i = 0; i < NI; i++) B[i] = 1.0;
+    assert_int_equal(ffc__mumps_solve(m, 1, B), FFC_OK);
+    assert_int_equal(ffc__mumps_inverse(m, 3, cols, 5, rows, X), FFC_OK);
+    for (int c = 0; c < 3; c++) {
+        double e[NI] = {0}, x[NI];
+        e[cols[c]] = 1.0;
+        test_dense_solve(NI, A, e, x);
+        for (int r = 0; r < 5; r++) assert_close(X[r + 5 * c], x[rows[r]], 1e-13);
+    }
+    const long twice[2] = {3, 3}, out[1] = {NI};
+    assert_int_equal(ffc__mumps_inverse(m, 2, twice, 5, rows, X), FFC_ERR_VALUE);
+    assert_int_equal(ffc__mumps_inverse(m, 3, cols, 2, twice, X), FFC_ERR_VALUE);
+    assert_int_equal(ffc__mumps_inverse(m, 3, cols, 1, out, X), FFC_ERR_INDEX);
+    assert_int_equal(ffc__mumps_inverse(m, 1, out, 5, rows, X), FFC_ERR_INDEX);
+    /* and a dense solve after it */
+    for (int i = 0; i < NI; i++) B[i] = 1.0;
+    assert_int_equal(ffc__mumps_solve(m, 1, B), FFC_OK);
+    double x1[NI], b1[NI];
+    for (int i = 0; i < NI; i++) b1[i] = 1.0;
+    test_dense_solve(NI, A, b1, x1);
+    for (int i = 0; i < NI; i++) assert_close(B[i], x1[i], 1e-13);
+    ffc__mumps_free(m);
+}
+
 /* a matrix whose pivoting overruns MUMPS's workspace estimate: rows of
  * a tiny diagonal (1e-8) in the first half and three random pairs of
  * entries each, which on 2 ranks stops the default estimate with
@@ -293,6 +343,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_singular),
         cmocka_unit_test(test_general_solve),
         cmocka_unit_test(test_pivoting_workspace),
+        cmocka_unit_test(test_inverse_entries),
         cmocka_unit_test(test_shared_lu),
         cmocka_unit_test(test_bad_engine),
     };
