@@ -842,8 +842,12 @@ ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &
     if (o.mu > 0) {
         ffc_effects fx;
         ffc_scene_effects(d.s, &fx);
-        if (!fx.friction)
-            bad(PO_MU, o.mu, "> 0, but the scene's effects have no friction: make it with ffcScene C(Th, effects = ffcFriction)");
+        if (!fx.friction) {   // (the fix keeps the scene's other effects)
+            std::string e = "ffcFriction";
+            if (fx.dynamic) e += " + ffcDynamic";
+            if (fx.finite_def) e += " + ffcFiniteDef";
+            bad(PO_MU, o.mu, ("> 0, but the scene's effects have no friction: make it with ffcScene C(Th, effects = " + e + ")").c_str());
+        }
     }
     if (nm.has(PO_EPSN) && (!(o.eps_n > 0) || std::isinf(o.eps_n))) bad(PO_EPSN, o.eps_n, "must be finite and > 0 (normal penalty)");
     if (!(o.eps_t >= 0) || std::isinf(o.eps_t)) bad(PO_EPST, o.eps_t, "must be finite and >= 0 (tangential penalty; 0: epsN)");
