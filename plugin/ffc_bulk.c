@@ -340,29 +340,38 @@ static int factorize_first(ffc__bulk *b, long nnew, const long nd[])
 
 /* With MUMPS: the compliance columns of the dofs nd[nnew] as entries of
  * K^-1 on the rows they are read at (C's dofs, the new ones and the rows
- * R), all in one pruned solve (ffc__mumps_inverse); each column is put
- * into the dense work vector on those rows only, handed to the same
- * bookkeeping as a back-solve's, and cleared again. */
+ * R), by pruned solves of at most INV_ENTRIES entries each
+ * (ffc__mumps_inverse); each column is put into the dense work vector on
+ * those rows only, handed to the same bookkeeping as a back-solve's, and
+ * cleared again. Every rank takes the same branches: a failed allocation
+ * anywhere is FFC_ERR_MEMORY everywhere (ffc__mumps_agree). */
+enum { INV_ENTRIES = 1 << 21 };   /* entries of K^-1 per pruned solve (its transient work: about 20 bytes
+                                     each, 40 MB; fewer columns per solve lost the pruning's gain) */
 static int add_columns_inverse(ffc__bulk *b, long nnew, const long nd[])
 {
     const long n = b->n, m0 = b->m;
     long *rows = malloc((size_t)(m0 + nnew + b->nr) * sizeof *rows), nrows = 0;
     unsigned char *seen = calloc((size_t)n, 1);
-    if (!rows || !seen) { free(rows); free(seen); return FFC_ERR_MEMORY; }
-    for (long k = 0; k < m0 + nnew + b->nr; k++) {   /* C, the new dofs, R: each once */
-        const long i = k < m0 ? b->dof[k] : k < m0 + nnew ? nd[k - m0] : b->rows[k - m0 - nnew];
-        if (!seen[i]) { seen[i] = 1; rows[nrows++] = i; }
-    }
+    if (rows && seen)
+        for (long k = 0; k < m0 + nnew + b->nr; k++) {   /* C, the new dofs, R: each once */
+            const long i = k < m0 ? b->dof[k] : k < m0 + nnew ? nd[k - m0] : b->rows[k - m0 - nnew];
+            if (!seen[i]) { seen[i] = 1; rows[nrows++] = i; }
+        }
     free(seen);
-    double *X = malloc((size_t)nrows * nnew * sizeof *X);
-    int st = X ? ffc__mumps_inverse(b->mp, nnew, nd, nrows, rows, X) : FFC_ERR_MEMORY;
+    const long chunk = nrows > 0 && INV_ENTRIES / nrows > 0 ? INV_ENTRIES / nrows : 1;
+    double *X = rows ? malloc((size_t)nrows * (nnew < chunk ? nnew : chunk) * sizeof *X) : NULL;
+    int st = ffc__mumps_agree(b->mp, rows && seen && X) ? FFC_OK : FFC_ERR_MEMORY;
     double *x = b->Bb->x;   /* (zero, and left zero) */
-    for (long k = 0; k < nnew && !st; k++) {
-        for (long r = 0; r < nrows; r++) x[rows[r]] = X[r + k * nrows];
-        st = ffc_reduced_add(n, b->ld, b->m, b->dof, b->G, x, nd[k]);
-        for (long r = 0; r < b->nr && !st; r++) b->H[r + b->m * b->nr] = x[b->rows[r]];
-        for (long r = 0; r < nrows; r++) x[rows[r]] = 0.0;
-        if (!st) b->m++;
+    for (long k0 = 0; k0 < nnew && !st; k0 += chunk) {
+        const long nc = nnew - k0 < chunk ? nnew - k0 : chunk;
+        st = ffc__mumps_inverse(b->mp, nc, nd + k0, nrows, rows, X);
+        for (long k = 0; k < nc && !st; k++) {
+            for (long r = 0; r < nrows; r++) x[rows[r]] = X[r + k * nrows];
+            st = ffc_reduced_add(n, b->ld, b->m, b->dof, b->G, x, nd[k0 + k]);
+            for (long r = 0; r < b->nr && !st; r++) b->H[r + b->m * b->nr] = x[b->rows[r]];
+            for (long r = 0; r < nrows; r++) x[rows[r]] = 0.0;
+            if (!st) b->m++;
+        }
     }
     free(rows); free(X);
     if (st) return st;

@@ -182,9 +182,17 @@ static int by_key(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+int ffc__mumps_agree(ffc__mumps *m, int ok)
+{
+    int all = 0;
+    if (!m) return ok;
+    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, m->comm);
+    return all;
+}
+
 int ffc__mumps_inverse(ffc__mumps *m, long ncols, const long cols[], long nrows, const long rows[], double X[])
 {
-    if (!m || (ncols > 0 && (!cols || !rows || !X))) return FFC_ERR_NULL;
+    if (!m || (ncols > 0 && (!cols || !rows))) return FFC_ERR_NULL;
     if (!m->factored) return FFC_ERR_EMPTY;
     const long n = m->id.n, nz = ncols * nrows;
     if (ncols < 0 || nrows <= 0 || nz > 2147483646L) return FFC_ERR_SIZE;
@@ -196,9 +204,7 @@ int ffc__mumps_inverse(ffc__mumps *m, long ncols, const long cols[], long nrows,
     keyed *cp = malloc((size_t)ncols * sizeof *cp), *rp = malloc((size_t)nrows * sizeof *rp);
     MUMPS_INT *ptr = malloc((size_t)(n + 1) * sizeof *ptr), *irs = malloc((size_t)nz * sizeof *irs);
     double *rs = malloc((size_t)nz * sizeof *rs);
-    int ok = cp && rp && ptr && irs && rs, all = 0, st = FFC_OK;
-    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, m->comm);
-    if (!all) st = FFC_ERR_MEMORY;
+    int st = ffc__mumps_agree(m, cp && rp && ptr && irs && rs && X) ? FFC_OK : FFC_ERR_MEMORY;
     if (!st) {
         for (long k = 0; k < ncols; k++) cp[k] = (keyed){cols[k], k};
         for (long k = 0; k < nrows; k++) rp[k] = (keyed){rows[k], k};
@@ -321,6 +327,11 @@ int ffc__mumps_solve(ffc__mumps *m, long nrhs, double B[])
 {
     (void)m; (void)nrhs; (void)B;
     return FFC_ERR_UNAVAILABLE;
+}
+int ffc__mumps_agree(ffc__mumps *m, int ok)
+{
+    (void)m;
+    return ok;
 }
 int ffc__mumps_inverse(ffc__mumps *m, long ncols, const long cols[], long nrows, const long rows[], double X[])
 {

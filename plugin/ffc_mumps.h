@@ -23,8 +23,13 @@ int ffc__mumps_solve(ffc__mumps *m, long nrhs, double B[]);
  * solves to the tree paths of the rows and columns asked for (ICNTL(30)),
  * which makes a block of compliance columns on a contact surface several
  * times cheaper than as dense right-hand sides.  FFC_ERR_VALUE for an index
- * given twice, FFC_ERR_EMPTY before a factorization. */
+ * given twice, FFC_ERR_EMPTY before a factorization, FFC_ERR_MEMORY on every
+ * rank when X is NULL on one (its allocation failed) or MUMPS fails. */
 int ffc__mumps_inverse(ffc__mumps *m, long ncols, const long cols[], long nrows, const long rows[], double X[]);
+/* 1 when ok is 1 on every rank of m's communicator (a collective call:
+ * a local failure becomes every rank's, so that all take one branch);
+ * ok itself without m */
+int ffc__mumps_agree(ffc__mumps *m, int ok);
 /* ranks, and this rank's and the largest rank's factorization memory (MB) */
 void ffc__mumps_info(const ffc__mumps *m, int *ranks, double *mb_rank, double *mb_max);
 

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <dmumps_c.h>
 #include <mpi.h>
 
 #include "ffc_test.h"
@@ -255,6 +256,37 @@ static void test_pivoting_workspace(void **state)
             pi[nt] = j; pj[nt] = i; pv[nt] = test_rand(&seed, 0, 1); nt++;
         }
         bb[i] = 1.0;
+    }
+    /* the premise: MUMPS itself, as ffc_parallel_solve sets it up but with
+     * its default workspace, runs short (a MUMPS that no longer does wants
+     * another matrix here, not a test that passes without a retry) */
+    {
+        int rank, ranks;
+        ffc_mpi_world(&rank, &ranks, NULL);
+        const long lo = nt * rank / ranks, hi = nt * (rank + 1) / ranks;
+        static MUMPS_INT ri[7 * NP], rj[7 * NP];
+        static double rv[7 * NP], rb[NP];
+        for (long t = lo; t < hi; t++) { ri[t - lo] = (MUMPS_INT)pi[t] + 1; rj[t - lo] = (MUMPS_INT)pj[t] + 1; rv[t - lo] = pv[t]; }
+        for (int i = 0; i < NP; i++) rb[i] = bb[i];
+        DMUMPS_STRUC_C id;
+        memset(&id, 0, sizeof id);
+        id.comm_fortran = (MUMPS_INT)fc;
+        id.par = 1;
+        id.sym = 0;
+        id.job = -1;
+        dmumps_c(&id);
+        id.icntl[0] = id.icntl[1] = id.icntl[2] = -1; id.icntl[3] = 0;
+        id.icntl[17] = 3; id.icntl[23] = 0; id.icntl[9] = -2;   /* ICNTL(18), (24), (10) as ffc_parallel_solve */
+        id.n = NP;
+        id.nnz_loc = hi - lo; id.nz_loc = (MUMPS_INT)(hi - lo);
+        id.irn_loc = ri; id.jcn_loc = rj; id.a_loc = rv;
+        if (rank == 0) { id.rhs = rb; id.nrhs = 1; id.lrhs = NP; }
+        id.job = 6;
+        dmumps_c(&id);
+        const int e = id.infog[0];
+        id.job = -2;
+        dmumps_c(&id);
+        assert_true(e == -8 || e == -9 || e == -11 || e == -14 || e == -15 || e == -17 || e == -20);
     }
     long bad = -1;
     const ffc_parallel shared = {FFC_ENGINE_MUMPS, fc, 0};
