@@ -54,6 +54,15 @@ check hertz-finite hertz "$H" -hc 0.1 -vtk 0 -finite 1
 check patch patch "contact_force contact_area err_p max_penetration"
 # (mortar passes the patch test: err_p and the penetration are round-off)
 check patch-mortar patch "contact_force contact_area" -method mortar -h1 0.25 -h2 0.125
+# a case's outputs in a folder under results/ that does not exist yet: each
+# rank > 0 runs with its own, empty results/, and must make the folder
+# there too (the JSON is rank 0's alone; hertz.edp also writes its p(r)
+# table on every rank)
+rm -rf results/mpi-answers
+sh scripts/ff -np "$np" scripts/hertz.edp -hc 0.1 -vtk 0 -out results/mpi-answers/hertz > "$dir/results-folder.log" 2>&1 \
+    || { echo "FAIL outputs into results/mpi-answers/: $np ranks (exit $?)"; why "$dir/results-folder.log"; fail=1; }
+[ -s results/mpi-answers/hertz.json ] || { echo "FAIL no results/mpi-answers/hertz.json from $np ranks"; fail=1; }
+rm -rf results/mpi-answers
 if [ "$mode" = full ]; then
     check sliding-block sliding-block "N T_plateau T_reverse work work_steady"
     check cattaneo cattaneo-mindlin "P level0_c level1_c level2_c level0_c_area level1_c_area level2_c_area level2_q_ratio_reached"
