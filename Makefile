@@ -62,7 +62,7 @@ mpitest: $(MPITESTS)
 
 $(B)/tests/%: tests/c/%.c tests/c/ffc_test.h $(B)/libffc.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Itests/c $< $(B)/libffc.a -lcmocka $(CLIBS) -o $@
+	$(CC) $(CFLAGS) -Itests/c -Iplugin $< $(B)/libffc.a -lcmocka $(CLIBS) -o $@
 
 ctest: $(CTESTS)
 
@@ -123,7 +123,7 @@ $(B)/asan/libffc.a: $(CSRC) $(HDRS)
 	cd $(B)/asan && for f in $(CSRC); do clang -std=c11 -Wall -Wextra -Werror -I$(CURDIR)/include $(ASAN) -c $(CURDIR)/$$f || exit 1; done
 	ar rcs $@ $(B)/asan/*.o
 $(B)/asan/test_%: tests/c/test_%.c tests/c/ffc_test.h $(B)/asan/libffc.a
-	clang -std=c11 -Wall -Wextra -Iinclude -Itests/c $(ASAN) $< $(B)/asan/libffc.a -lcmocka $(CLIBS) -o $@
+	clang -std=c11 -Wall -Wextra -Iinclude -Itests/c -Iplugin $(ASAN) $< $(B)/asan/libffc.a -lcmocka $(CLIBS) -o $@
 $(B)/fuzz/%: tests/fuzz/%.c $(B)/asan/libffc.a
 	@mkdir -p $(B)/fuzz
 	clang -std=c11 -Iinclude -g -O1 -fsanitize=fuzzer,address,undefined $< $(B)/asan/libffc.a $(CLIBS) -o $@

@@ -49,4 +49,19 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
                      void *ctx, const double r[], double u[], const ffc_newton_opts *o, ffc_newton_info *info,
                      long *bad);
 
+/* Test hooks.  The factor's kind (supernodal = 1: CHOLMOD's supernodal
+ * factor whatever the size; 0: CHOLMOD chooses) and the compliance
+ * columns' solves (prune = 1: pruned to the paths of the rows read, the
+ * default; 0: whole back-solves), both for the next factorization. */
+void ffc__bulk_set_columns_mode(ffc__bulk *b, int supernodal, int prune);
+/* Factorizes K if not yet, joins rows[nr] to the rows R and adds the
+ * compliance columns of the dofs nd[nnew] (not yet in C). */
+int ffc__bulk_columns(ffc__bulk *b, long nr, const long rows[], long nnew, const long nd[], long *bad);
+/* The compliance kept: returns m = |C|; dof[m] C's dofs, G (m x m in a
+ * leading dimension ld), H (|R| x m, leading dimension |R|), whether the
+ * factor is supernodal and the share of its entries the last pruned
+ * backward solves visited (0: none made). */
+long ffc__bulk_compliance(const ffc__bulk *b, const long **dof, const double **G, long *ld, const double **H,
+                          int *supernodal, double *pruned);
+
 #endif

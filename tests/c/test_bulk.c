@@ -6,6 +6,11 @@
 #include <string.h>
 
 #include "ffc_test.h"
+#include "ffc_bulk.h"
+
+void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info);
+void dpotrs_(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda, double *b,
+             const int *ldb, int *info);
 
 /* 16 nodes, 48 dofs: body A = dofs 0..23 (a spring chain, dofs 0..2
  * Dirichlet rows with diagonal TGV), body B = dofs 24..47 (a free chain:
@@ -252,6 +257,109 @@ static void test_no_mpi(void **state)
     ffc_scene_free(s);
 }
 
+
+/* A lattice of LN^3 nodes joined by springs along the axes, each a 3 x 3
+ * stiffness k (d d' + I / 5) (d the spring's direction), the nodes of the
+ * plane z = 0 on Dirichlet rows (diagonal TGV); 3 LN^3 dofs. */
+#define LN 6
+#define LD (3 * LN * LN * LN)
+static long lattice(long Ti[], long Tj[], double Tv[], double *Kd)
+{
+    long t = 0;
+    memset(Kd, 0, sizeof(double) * LD * LD);
+    for (int z = 0; z < LN; z++)
+        for (int y = 0; y < LN; y++)
+            for (int x = 0; x < LN; x++)
+                for (int d = 0; d < 3; d++) {
+                    const int c[3] = {x + (d == 0), y + (d == 1), z + (d == 2)};
+                    if (c[d] >= LN) continue;
+                    const long a = x + LN * (y + LN * z), e = c[0] + LN * (c[1] + LN * c[2]);
+                    const double k = 10.0 + (a % 7);
+                    for (int i = 0; i < 3; i++)
+                        for (int j = 0; j < 3; j++) {
+                            const double v = k * ((i == d && j == d) + (i == j) / 5.0);
+                            if (v == 0.0) continue;
+                            const long p[4][2] = {{a, a}, {e, e}, {a, e}, {e, a}};
+                            const double sg[4] = {v, v, -v, -v};
+                            for (int q = 0; q < 4; q++) {
+                                Ti[t] = 3 * p[q][0] + i; Tj[t] = 3 * p[q][1] + j; Tv[t] = sg[q]; t++;
+                            }
+                        }
+                }
+    for (long i = 0; i < 3 * LN * LN; i++) { Ti[t] = i; Tj[t] = i; Tv[t] = TGV; t++; }
+    for (long k = 0; k < t; k++) Kd[Ti[k] * LD + Tj[k]] += Tv[k];
+    return t;
+}
+
+/* The compliance columns G (C x C) and H (R x C) against K^-1 from a dense
+ * Cholesky of the lattice's K, with a supernodal factor and pruned solves,
+ * the same factor and whole back-solves, and the factor CHOLMOD chooses;
+ * C grown in two calls, some of its dofs outside R.  Tolerance: 1e-10 of
+ * the largest entry of K^-1 (backward-stable solves of a matrix of
+ * condition ~1e3 on its free rows; the Dirichlet rows' entries are 1/TGV
+ * in the dense inverse and 0 in the factor's, both far below it). */
+static void test_pruned_columns(void **state)
+{
+    (void)state;
+    enum { NT = 40 * LN * LN * LN };
+    long *Ti = malloc(NT * sizeof(long)), *Tj = malloc(NT * sizeof(long)), bad = -1;
+    double *Tv = malloc(NT * sizeof(double)), *Kd = malloc(sizeof(double) * LD * LD);
+    const long nt = lattice(Ti, Tj, Tv, Kd);
+    assert_true(nt <= NT);
+    /* R: the dofs of the top plane; C: 24 of them, then 18 more of which 9 interior ones */
+    long rows[3 * LN * LN], nd1[24], nd2[18];
+    const long top = 3 * LN * LN * (LN - 1);
+    for (long k = 0; k < 3 * LN * LN; k++) rows[k] = top + k;
+    for (long k = 0; k < 24; k++) nd1[k] = top + 3 * k;
+    for (long k = 0; k < 9; k++) nd2[k] = top + 3 * k + 1;
+    for (long k = 0; k < 9; k++) nd2[9 + k] = 3 * LN * LN * 2 + 5 * k + 2;
+    /* the dense reference: columns of K^-1 at C's dofs */
+    double *Kinv = calloc((size_t)LD * 42, sizeof(double));
+    long cd[42];
+    for (long k = 0; k < 42; k++) {
+        cd[k] = k < 24 ? nd1[k] : nd2[k - 24];
+        Kinv[cd[k] + k * LD] = 1.0;
+    }
+    int n = LD, nrhs = 42, info = 0;
+    dpotrf_("L", &n, Kd, &n, &info);
+    assert_int_equal(info, 0);
+    dpotrs_("L", &n, &nrhs, Kd, &n, Kinv, &n, &info);
+    assert_int_equal(info, 0);
+    double kmax = 0.0;
+    for (long k = 0; k < (long)LD * 42; k++) kmax = fmax(kmax, fabs(Kinv[k]));
+    const int modes[3][2] = {{1, 1}, {1, 0}, {0, 1}};
+    for (int md = 0; md < 3; md++) {
+        ffc__bulk *b = NULL;
+        assert_int_equal(ffc__bulk_create(LD, nt, Ti, Tj, Tv, 1000, &b, &bad), FFC_OK);
+        ffc__bulk_set_columns_mode(b, modes[md][0], modes[md][1]);
+        assert_int_equal(ffc__bulk_columns(b, 3 * LN * LN, rows, 24, nd1, &bad), FFC_OK);
+        assert_int_equal(ffc__bulk_columns(b, 3 * LN * LN, rows, 18, nd2, &bad), FFC_OK);
+        const long *dof;
+        const double *G, *H;
+        long ld;
+        int super = -1;
+        double share = -1.0;
+        assert_int_equal(ffc__bulk_compliance(b, &dof, &G, &ld, &H, &super, &share), 42);
+        if (md < 2) assert_int_equal(super, 1);
+        if (md == 0) assert_true(share > 0.0 && share < 0.9);   /* the premise: the solves were pruned */
+        if (md == 1) assert_true(share == 0.0);
+        long col[42];   /* C's order is the solves' (L's order with pruning): the reference column of each */
+        for (long j = 0; j < 42; j++) {
+            col[j] = -1;
+            for (long k = 0; k < 42; k++)
+                if (cd[k] == dof[j]) col[j] = k;
+            assert_true(col[j] >= 0 && (j < 24) == (col[j] < 24));   /* each dof once, the first call's first */
+        }
+        for (long j = 0; j < 42; j++) {
+            for (long i = 0; i < 42; i++) assert_close(G[i + j * ld], Kinv[dof[i] + col[j] * LD], 1e-10 * kmax);
+            for (long r = 0; r < 3 * LN * LN; r++)
+                assert_close(H[r + j * 3 * LN * LN], Kinv[rows[r] + col[j] * LD], 1e-10 * kmax);
+        }
+        ffc__bulk_free(b);
+    }
+    free(Ti); free(Tj); free(Tv); free(Kd); free(Kinv);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -260,6 +368,7 @@ int main(void)
         cmocka_unit_test(test_mostly_dirichlet),
         cmocka_unit_test(test_columns_grow),
         cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_pruned_columns),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
