@@ -904,9 +904,15 @@ int ffc_scene_set_bulk(ffc_scene *s, long n, long nt, const long Ti[], const lon
 /* Where a scene's bulk matrix is factorized and solved. */
 typedef enum {
     FFC_ENGINE_CHOLMOD = 0,   /* CHOLMOD, in this process (the default) */
-    FFC_ENGINE_MUMPS = 1      /* parallel MUMPS over an MPI communicator: every rank of it holds the
+    FFC_ENGINE_MUMPS = 1,     /* parallel MUMPS over an MPI communicator: every rank of it holds the
                                  same scene and makes the same calls in the same order; each hands
                                  MUMPS a share of K's entries, and every rank receives each solution */
+    FFC_ENGINE_REPLICATED = 2 /* CHOLMOD on every rank of an MPI communicator, each holding the whole
+                                 factor (the same calls in the same order, as for MUMPS); the
+                                 compliance columns of the condensed path are shared out over the
+                                 ranks and gathered.  Small-strain bulks only (ffc_scene_set_bulk):
+                                 faster than MUMPS on a few ranks while one process's memory holds
+                                 the factor */
 } ffc_engine;
 typedef struct {
     ffc_engine engine;   /* the engine */
@@ -917,8 +923,9 @@ typedef struct {
                             matrix assembled on each rank's part of the mesh) */
 } ffc_parallel;
 /* Sets the engine of the next ffc_scene_set_bulk.  FFC_ERR_VALUE for an
- * unknown engine, FFC_ERR_UNAVAILABLE for MUMPS in a build without MPI
- * (ffc_has_mpi() == 0) or before MPI_Init (at ffc_scene_set_bulk). */
+ * unknown engine, FFC_ERR_UNAVAILABLE for MUMPS or the replicated CHOLMOD
+ * in a build without MPI (ffc_has_mpi() == 0) or for MUMPS before
+ * MPI_Init (at ffc_scene_set_bulk). */
 int ffc_scene_set_parallel(ffc_scene *s, const ffc_parallel *p);
 /* Solves A x = b[n] once, A a general sparse matrix (a full Newton
  * system: non-symmetric with friction, indefinite with multipliers) from
@@ -930,7 +937,8 @@ int ffc_scene_set_parallel(ffc_scene *s, const ffc_parallel *p);
  * FFC_ERR_SINGULAR (an exactly zero pivot; as with UMFPACK, a tiny one
  * gives a huge solution: the caller checks the residual), FFC_ERR_UNAVAILABLE
  * without MPI or for p->engine = FFC_ENGINE_CHOLMOD (one process: FreeFEM's
- * UMFPACK). */
+ * UMFPACK); FFC_ERR_VALUE for FFC_ENGINE_REPLICATED (a full system is
+ * MUMPS's). */
 int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], const long Tj[], const double Tv[],
                        const double b[], double x[], long *bad);
 /* 1 in a build with MPI and parallel MUMPS (-DFFC_MPI), else 0. */

@@ -51,7 +51,7 @@ struct ffc__bulk {
     cholmod_dense *Bb, *Xb, *Yb, *Eb;   /* a block of BLOCK right-hand sides */
     ffc__mumps *mp;            /* parallel MUMPS in place of CHOLMOD's factor (NULL: CHOLMOD); B is then
                                   its right-hand side, solved in place, and Bb the zeroed work vector of
-                                  the compliance columns (entries of K^-1, add_columns_inverse) */
+                                  the compliance columns (entries of K^-1, add_columns) */
     int factored;              /* 1: a factor (L, or MUMPS's) is held */
     ffc__pdense *pd;           /* with MUMPS: the dense LU shared over the same ranks (NULL: none) */
     int kdist;                 /* 1: the kept LU (ka, kdof) is pd's, not klu */
@@ -94,7 +94,11 @@ struct ffc__bulk {
     long *rpos;                /* [n] position in rows, or -1 */
     double *H;                 /* [nr*ld] the compliance columns of C on the rows R (column-major, leading
                                   dimension nr; the rows of C in it are G's) */
-    /* the pruned solves of a supernodal factor (add_columns_pruned), made with the factor */
+    /* CHOLMOD replicated on the ranks of a communicator: each computes a share of the compliance columns */
+    int rcomm;                 /* the communicator (Fortran handle) */
+    int rrank, rsize;          /* this rank, the ranks (rsize 1: one process, nothing shared) */
+    long *rcount;              /* [rsize] work: the values each rank solved */
+    /* the pruned solves of a supernodal factor (pruned_block), made with the factor */
     int prune;                 /* 1: compliance columns by pruned solves when L is supernodal (default) */
     int force_super;           /* 1: a supernodal L whatever its size (test hook; 0: CHOLMOD chooses) */
     int *ipm;                  /* [n] position of each dof in L's order (the inverse of L->Perm) */
@@ -135,7 +139,7 @@ void ffc__bulk_free(ffc__bulk *b)
     free(b->xc); free(b->w); free(b->r); free(b->dx); free(b->t); free(b->kv);
     free(b->Gc); free(b->ti); free(b->tj); free(b->tv); free(b->Mw); free(b->Gw);
     free(b->rows); free(b->rpos); free(b->H);
-    free(b->kdof); free(b->klu); free(b->kpiv); free(b->gv);
+    free(b->kdof); free(b->klu); free(b->kpiv); free(b->gv); free(b->rcount);
     free(b);
 }
 
@@ -166,6 +170,7 @@ int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const do
     b->nt = nt;
     b->mmax = mmax;
     b->prune = 1;
+    b->rsize = 1;
     const size_t nn = (size_t)n, nz = (size_t)(nt > 0 ? nt : 1);
     b->Ti = malloc(nz * sizeof(long));
     b->Tj = malloc(nz * sizeof(long));
@@ -236,11 +241,36 @@ int ffc__bulk_set_mumps(ffc__bulk *b, int fcomm)
     bulk_free_factor(b);
     ffc__mumps_free(b->mp);
     b->mp = m;
+    b->rsize = 1;
     ffc__pdense_free(b->pd);
     b->pd = NULL;
     b->kdist = 0;
     b->ka = 0;
     if (ffc__pdense_create(fcomm, &b->pd)) b->pd = NULL;   /* (without it, dense LUs on every rank) */
+    return FFC_OK;
+}
+
+int ffc__bulk_set_replicated(ffc__bulk *b, int fcomm)
+{
+    if (!b) return FFC_ERR_NULL;
+    if (!ffc_has_mpi()) return FFC_ERR_UNAVAILABLE;
+    int rank = 0, size = 1;
+    ffc__mpi_ranks(fcomm, &rank, &size);
+    long *count = malloc((size_t)size * sizeof *count);
+    if (!count) return FFC_ERR_MEMORY;
+    bulk_free_factor(b);
+    ffc__mumps_free(b->mp);
+    b->mp = NULL;
+    free(b->rcount);
+    b->rcount = count;
+    b->rcomm = fcomm;
+    b->rrank = rank;
+    b->rsize = size;
+    ffc__pdense_free(b->pd);
+    b->pd = NULL;
+    b->kdist = 0;
+    b->ka = 0;
+    if (size > 1 && ffc__pdense_create(fcomm, &b->pd)) b->pd = NULL;   /* (the condensed Newton's dense LUs) */
     return FFC_OK;
 }
 
@@ -378,48 +408,6 @@ static int factorize_first(ffc__bulk *b, long nnew, const long nd[])
     return st;
 }
 
-/* With MUMPS: the compliance columns of the dofs nd[nnew] as entries of
- * K^-1 on the rows they are read at (C's dofs, the new ones and the rows
- * R), by pruned solves of at most INV_ENTRIES entries each
- * (ffc__mumps_inverse); each column is put into the dense work vector on
- * those rows only, handed to the same bookkeeping as a back-solve's, and
- * cleared again. Every rank takes the same branches: a failed allocation
- * anywhere is FFC_ERR_MEMORY everywhere (ffc__mumps_agree). */
-enum { INV_ENTRIES = 1 << 21 };   /* entries of K^-1 per pruned solve (its transient work: about 20 bytes
-                                     each, 40 MB; fewer columns per solve lost the pruning's gain) */
-static int add_columns_inverse(ffc__bulk *b, long nnew, const long nd[])
-{
-    const long n = b->n, m0 = b->m;
-    long *rows = malloc((size_t)(m0 + nnew + b->nr) * sizeof *rows), nrows = 0;
-    unsigned char *seen = calloc((size_t)n, 1);
-    if (rows && seen)
-        for (long k = 0; k < m0 + nnew + b->nr; k++) {   /* C, the new dofs, R: each once */
-            const long i = k < m0 ? b->dof[k] : k < m0 + nnew ? nd[k - m0] : b->rows[k - m0 - nnew];
-            if (!seen[i]) { seen[i] = 1; rows[nrows++] = i; }
-        }
-    free(seen);
-    const long chunk = nrows > 0 && INV_ENTRIES / nrows > 0 ? INV_ENTRIES / nrows : 1;
-    double *X = rows ? malloc((size_t)nrows * (nnew < chunk ? nnew : chunk) * sizeof *X) : NULL;
-    int st = ffc__mumps_agree(b->mp, rows && seen && X) ? FFC_OK : FFC_ERR_MEMORY;
-    double *x = b->Bb->x;   /* (zero, and left zero) */
-    for (long k0 = 0; k0 < nnew && !st; k0 += chunk) {
-        const long nc = nnew - k0 < chunk ? nnew - k0 : chunk;
-        st = ffc__mumps_inverse(b->mp, nc, nd + k0, nrows, rows, X);
-        for (long k = 0; k < nc && !st; k++) {
-            for (long r = 0; r < nrows; r++) x[rows[r]] = X[r + k * nrows];
-            st = ffc_reduced_add(n, b->ld, b->m, b->dof, b->G, x, nd[k0 + k]);
-            for (long r = 0; r < b->nr && !st; r++) b->H[r + b->m * b->nr] = x[b->rows[r]];
-            for (long r = 0; r < nrows; r++) x[rows[r]] = 0.0;
-            if (!st) b->m++;
-        }
-    }
-    free(rows); free(X);
-    if (st) return st;
-    b->info.backsolves += nnew;
-    b->info.columns += nnew;
-    return FFC_OK;
-}
-
 /* The supernodal elimination tree of L (parent of supernode s: the one
  * holding the first row below s's diagonal block), with each dof's
  * position in L's order and each position's supernode; made once per
@@ -474,127 +462,171 @@ static void prune_mark(const ffc__bulk *b, long nd, const long d[])
  * z and x on that row's path alone (the backward solve of a supernode
  * reads only rows below its diagonal block, its ancestors').  So the
  * columns read on the rows C u new u R take the forward solve over the
- * block's paths (Fw) and the backward solve over the rows' paths (Bw),
+ * block's paths (Fw) and the backward solve over the rows' paths (bw),
  * not all of L: on Hertz P1 h_c = 0.0125 about 25 % and 65 % of L's
- * entries, against 100 % twice.  A block of X (in L's order) is zero
- * outside Fw before its backward solve; Fw lies in Bw (the block's dofs
- * are among the rows), and Bw's rows are cleared after it. */
-static int add_columns_pruned(ffc__bulk *b, long nnew, const long nd[])
+ * entries, against 100 % twice.  X (n x BLOCK, in L's order) is zero on
+ * entry; the block's dofs are among the rows, so Fw lies in bw, and bw's
+ * rows are cleared at the end.  The values on rows[nrows] go to
+ * V (nrows x nb). */
+static void pruned_block(ffc__bulk *b, long nbl, const long d[], const unsigned char bw[], long nrows,
+                         const long rows[], double V[])
 {
-    int st = prune_tree(b);
-    if (st) return st;
     const cholmod_factor *L = b->L;
-    const long n = b->n, ns = (long)L->nsuper, m0 = b->m;
+    const long n = b->n, ns = (long)L->nsuper;
     const int *super = L->super, *pi = L->pi, *px = L->px, *ls = L->s;
     const double *lx = L->x, one = 1.0, zero = 0.0, mone = -1.0;
-    if (n > 2147483647L / BLOCK) return FFC_ERR_SIZE;
-    const int ldx = (int)n;
-    /* the rows read (C, the new dofs, R: each once) and their paths Bw */
-    long *rows = malloc((size_t)(m0 + nnew + b->nr) * sizeof *rows), nrows = 0;
-    unsigned char *bw = calloc((size_t)ns, 1);
-    double *x = calloc((size_t)n, sizeof *x);
-    if (!rows || !bw || !x) {
-        free(rows); free(bw); free(x);
-        return FFC_ERR_MEMORY;
+    const int ldx = (int)n, nb = (int)nbl;
+    double *X = b->Bb->x, *W = b->sw;
+    for (long k = 0; k < nbl; k++) X[b->ipm[d[k]] + k * n] = 1.0;
+    prune_mark(b, nbl, d);   /* Fw */
+    for (long s = 0; s < ns; s++) {   /* forward, children before parents */
+        if (!b->smark[s]) continue;
+        b->smark[s] = 0;
+        const int k1 = super[s], ncol = super[s + 1] - k1, nrow = pi[s + 1] - pi[s], below = nrow - ncol;
+        const double *Ls = lx + px[s];
+        dtrsm_("L", "L", "N", "N", &ncol, &nb, &one, Ls, &nrow, X + k1, &ldx);
+        if (below == 0) continue;
+        dgemm_("N", "N", &below, &nb, &ncol, &one, Ls + ncol, &nrow, X + k1, &ldx, &zero, W, &below);
+        const int *ri = ls + pi[s] + ncol;
+        for (long c = 0; c < nbl; c++)
+            for (int r = 0; r < below; r++) X[ri[r] + c * n] -= W[r + c * below];
     }
-    for (long k = 0; k < m0 + nnew + b->nr; k++) {
-        const long i = k < m0 ? b->dof[k] : k < m0 + nnew ? nd[k - m0] : b->rows[k - m0 - nnew];
-        if (!x[i]) { x[i] = 1.0; rows[nrows++] = i; }
-    }
-    for (long r = 0; r < nrows; r++) x[rows[r]] = 0.0;
-    /* the new columns in L's order: a block's columns share their paths */
-    long *srt = malloc((size_t)nnew * sizeof *srt);
-    if (!srt) { free(rows); free(bw); free(x); return FFC_ERR_MEMORY; }
-    for (long k = 0; k < nnew; k++) srt[k] = ((long)b->ipm[nd[k]] << 32) | k;
-    qsort(srt, (size_t)nnew, sizeof *srt, cmp_long);
-    for (long k = 0; k < nnew; k++) srt[k] = nd[srt[k] & 0xffffffffL];
-    nd = srt;
-    prune_mark(b, nrows, rows);
-    memcpy(bw, b->smark, (size_t)ns);
-    memset(b->smark, 0, (size_t)ns);
-    double vis = 0.0, all = 0.0;
-    for (long k = 0; k < ns; k++) {
-        const double e = (double)(super[k + 1] - super[k]) * (pi[k + 1] - pi[k]);
-        all += e;
-        vis += bw[k] ? e : 0.0;
-    }
-    b->pshare = vis / all;
-    double *X = b->Bb->x, *W = b->sw;   /* X: n x BLOCK, zero between blocks */
-    for (long k0 = 0; k0 < nnew && !st; k0 += BLOCK) {
-        const long nbl = nnew - k0 < BLOCK ? nnew - k0 : BLOCK;
-        const int nb = (int)nbl;
-        for (long k = 0; k < nbl; k++) X[b->ipm[nd[k0 + k]] + k * n] = 1.0;
-        prune_mark(b, nbl, nd + k0);   /* Fw */
-        for (long s = 0; s < ns; s++) {   /* forward, children before parents */
-            if (!b->smark[s]) continue;
-            b->smark[s] = 0;
-            const int k1 = super[s], ncol = super[s + 1] - k1, nrow = pi[s + 1] - pi[s], below = nrow - ncol;
-            const double *Ls = lx + px[s];
-            dtrsm_("L", "L", "N", "N", &ncol, &nb, &one, Ls, &nrow, X + k1, &ldx);
-            if (below == 0) continue;
-            dgemm_("N", "N", &below, &nb, &ncol, &one, Ls + ncol, &nrow, X + k1, &ldx, &zero, W, &below);
+    for (long s = ns - 1; s >= 0; s--) {   /* backward, parents before children */
+        if (!bw[s]) continue;
+        const int k1 = super[s], ncol = super[s + 1] - k1, nrow = pi[s + 1] - pi[s], below = nrow - ncol;
+        const double *Ls = lx + px[s];
+        if (below > 0) {
             const int *ri = ls + pi[s] + ncol;
             for (long c = 0; c < nbl; c++)
-                for (int r = 0; r < below; r++) X[ri[r] + c * n] -= W[r + c * below];
+                for (int r = 0; r < below; r++) W[r + c * below] = X[ri[r] + c * n];
+            dgemm_("T", "N", &ncol, &nb, &below, &mone, Ls + ncol, &nrow, W, &below, &one, X + k1, &ldx);
         }
-        for (long s = ns - 1; s >= 0; s--) {   /* backward, parents before children */
-            if (!bw[s]) continue;
-            const int k1 = super[s], ncol = super[s + 1] - k1, nrow = pi[s + 1] - pi[s], below = nrow - ncol;
-            const double *Ls = lx + px[s];
-            if (below > 0) {
-                const int *ri = ls + pi[s] + ncol;
-                for (long c = 0; c < nbl; c++)
-                    for (int r = 0; r < below; r++) W[r + c * below] = X[ri[r] + c * n];
-                dgemm_("T", "N", &ncol, &nb, &below, &mone, Ls + ncol, &nrow, W, &below, &one, X + k1, &ldx);
-            }
-            dtrsm_("L", "L", "T", "N", &ncol, &nb, &one, Ls, &nrow, X + k1, &ldx);
-        }
-        b->info.backsolves += nbl;
-        for (long k = 0; k < nbl && !st; k++) {
-            const double *xk = X + k * n;
-            for (long r = 0; r < nrows; r++) x[rows[r]] = xk[b->ipm[rows[r]]];
-            st = ffc_reduced_add(n, b->ld, b->m, b->dof, b->G, x, nd[k0 + k]);
-            for (long r = 0; r < b->nr && !st; r++) b->H[r + b->m * b->nr] = x[b->rows[r]];
-            for (long r = 0; r < nrows; r++) x[rows[r]] = 0.0;
-            if (!st) b->m++;
-        }
-        for (long s = 0; s < ns; s++)   /* X back to zero: it is nonzero on Bw's rows only */
-            if (bw[s])
-                for (long c = 0; c < nbl; c++)
-                    memset(X + super[s] + c * n, 0, (size_t)(super[s + 1] - super[s]) * sizeof(double));
+        dtrsm_("L", "L", "T", "N", &ncol, &nb, &one, Ls, &nrow, X + k1, &ldx);
     }
-    free(rows); free(bw); free(x); free(srt);
-    if (st) return st;
-    b->info.columns += nnew;
+    for (long k = 0; k < nbl; k++)
+        for (long r = 0; r < nrows; r++) V[r + k * nrows] = X[b->ipm[rows[r]] + k * n];
+    for (long s = 0; s < ns; s++)
+        if (bw[s])
+            for (long c = 0; c < nbl; c++)
+                memset(X + super[s] + c * n, 0, (size_t)(super[s + 1] - super[s]) * sizeof(double));
+}
+
+/* the same by whole back-solves (a simplicial factor, or pruning off) */
+static int whole_block(ffc__bulk *b, long nbl, const long d[], long nrows, const long rows[], double V[])
+{
+    const long n = b->n;
+    double *bx = b->Bb->x;
+    memset(bx, 0, (size_t)n * BLOCK * sizeof(double));
+    for (long k = 0; k < nbl; k++) bx[d[k] + k * n] = 1.0;
+    if (!cholmod_solve2(CHOLMOD_A, b->L, b->Bb, NULL, &b->Xb, NULL, &b->Yb, &b->Eb, &b->cc)) return FFC_ERR_MEMORY;
+    const double *xb = b->Xb->x;
+    for (long k = 0; k < nbl; k++)
+        for (long r = 0; r < nrows; r++) V[r + k * nrows] = xb[rows[r] + k * n];
     return FFC_OK;
 }
 
-/* the compliance columns of the dofs nd[nnew], BLOCK back-solves at a time */
+/* the columns of K'^-1 at the dofs d[nc] on rows[nrows] into V (nrows x
+ * nc), BLOCK at a time (bw: the rows' paths when pruned, else NULL) */
+static int columns_on_rows(ffc__bulk *b, long nc, const long d[], const unsigned char *bw, long nrows,
+                           const long rows[], double V[])
+{
+    for (long k0 = 0; k0 < nc; k0 += BLOCK) {
+        const long nbl = nc - k0 < BLOCK ? nc - k0 : BLOCK;
+        if (bw) pruned_block(b, nbl, d + k0, bw, nrows, rows, V + k0 * nrows);
+        else {
+            const int st = whole_block(b, nbl, d + k0, nrows, rows, V + k0 * nrows);
+            if (st) return st;
+        }
+        b->info.backsolves += nbl;
+    }
+    return FFC_OK;
+}
+
+/* The compliance columns of the dofs nd[nnew]: their values on the rows
+ * read (C, the new dofs, R: each once), in pieces of at most INV_ENTRIES
+ * values, each column put into the zero vector x on those rows only,
+ * handed to the bookkeeping (G, dof, H) and cleared again.  Where they
+ * come from:
+ * - parallel MUMPS: entries of K^-1 by its pruned solves (ffc__mumps_inverse);
+ * - CHOLMOD: pruned supernodal solves (pruned_block, the columns in the
+ *   factor's order: a block's columns then share their paths) or whole
+ *   back-solves;
+ * - CHOLMOD replicated on the ranks of a communicator: each rank solves
+ *   a contiguous share of each piece and the shares are gathered, so that
+ *   every rank keeps every column.
+ * With several ranks every rank takes the same branches: a failure on one
+ * is every rank's (FFC_ERR_MEMORY when it was another's). */
+enum { INV_ENTRIES = 1 << 21 };   /* values per piece (MUMPS's transient work: about 20 bytes each, 40 MB;
+                                     fewer columns per solve lost its pruning's gain) */
+static int agree(const ffc__bulk *b, int st)
+{
+    const int ok = b->mp ? ffc__mumps_agree(b->mp, st == FFC_OK) : b->rsize > 1 ? ffc__mpi_min(b->rcomm, st == FFC_OK)
+                                                                              : st == FFC_OK;
+    return ok ? FFC_OK : st ? st : FFC_ERR_MEMORY;
+}
+
 static int add_columns(ffc__bulk *b, long nnew, const long nd[])
 {
     int st = grow(b, b->m + nnew);
     if (st) return st;
-    if (b->mp) return add_columns_inverse(b, nnew, nd);
-    if (b->prune && b->L->is_super) return add_columns_pruned(b, nnew, nd);
-    const long n = b->n;
-    for (long k0 = 0; k0 < nnew; k0 += BLOCK) {
-        const long nb = nnew - k0 < BLOCK ? nnew - k0 : BLOCK;
-        double *bx = b->Bb->x;
-        memset(bx, 0, (size_t)n * BLOCK * sizeof(double));
-        for (long k = 0; k < nb; k++) bx[nd[k0 + k] + k * n] = 1.0;
-        if (b->mp) {
-            if ((st = ffc__mumps_solve(b->mp, nb, bx))) return st;
-        } else if (!cholmod_solve2(CHOLMOD_A, b->L, b->Bb, NULL, &b->Xb, NULL, &b->Yb, &b->Eb, &b->cc))
-            return FFC_ERR_MEMORY;
-        b->info.backsolves += nb;
-        const double *xb = b->mp ? bx : b->Xb->x;
-        for (long k = 0; k < nb; k++) {
-            st = ffc_reduced_add(n, b->ld, b->m, b->dof, b->G, xb + k * n, nd[k0 + k]);
-            if (st) return st;
-            for (long r = 0; r < b->nr; r++) b->H[r + b->m * b->nr] = xb[b->rows[r] + k * n];
-            b->m++;
+    const long n = b->n, m0 = b->m;
+    const int pruned = !b->mp && b->prune && b->L->is_super;
+    if (pruned && (st = prune_tree(b))) return st;
+    long *rows = malloc((size_t)(m0 + nnew + b->nr + 1) * sizeof *rows), nrows = 0;
+    long *d = malloc((size_t)(nnew + 1) * sizeof *d);
+    double *x = calloc((size_t)n, sizeof *x);
+    unsigned char *bw = pruned ? calloc((size_t)b->L->nsuper, 1) : NULL;
+    if (rows && x)
+        for (long k = 0; k < m0 + nnew + b->nr; k++) {
+            const long i = k < m0 ? b->dof[k] : k < m0 + nnew ? nd[k - m0] : b->rows[k - m0 - nnew];
+            if (!x[i]) { x[i] = 1.0; rows[nrows++] = i; }
+        }
+    if (rows && x)
+        for (long r = 0; r < nrows; r++) x[rows[r]] = 0.0;
+    const long chunk = nrows > 0 && INV_ENTRIES / nrows > 0 ? INV_ENTRIES / nrows : 1;
+    double *V = malloc((size_t)(nrows > 0 ? nrows : 1) * (nnew < chunk ? nnew : chunk) * sizeof *V);
+    st = agree(b, rows && d && x && V && (!pruned || bw) ? FFC_OK : FFC_ERR_MEMORY);
+    if (!st) {
+        memcpy(d, nd, (size_t)nnew * sizeof *d);
+        if (pruned) {   /* the new columns in the factor's order; the rows' paths */
+            for (long k = 0; k < nnew; k++) d[k] = ((long)b->ipm[nd[k]] << 32) | k;
+            qsort(d, (size_t)nnew, sizeof *d, cmp_long);
+            for (long k = 0; k < nnew; k++) d[k] = nd[d[k] & 0xffffffffL];
+            prune_mark(b, nrows, rows);
+            memcpy(bw, b->smark, (size_t)b->L->nsuper);
+            memset(b->smark, 0, (size_t)b->L->nsuper);
+            const int *super = b->L->super, *pi = b->L->pi;
+            double vis = 0.0, all = 0.0;
+            for (long k = 0; k < (long)b->L->nsuper; k++) {
+                const double e = (double)(super[k + 1] - super[k]) * (pi[k + 1] - pi[k]);
+                all += e;
+                vis += bw[k] ? e : 0.0;
+            }
+            b->pshare = vis / all;
         }
     }
+    for (long k0 = 0; k0 < nnew && !st; k0 += chunk) {
+        const long nc = nnew - k0 < chunk ? nnew - k0 : chunk;
+        if (b->mp) st = ffc__mumps_inverse(b->mp, nc, d + k0, nrows, rows, V);
+        else if (b->rsize > 1) {
+            long *count = b->rcount;
+            for (int r = 0; r < b->rsize; r++) count[r] = (nc * (r + 1) / b->rsize - nc * r / b->rsize) * nrows;
+            const long lo = nc * b->rrank / b->rsize, hi = nc * (b->rrank + 1) / b->rsize;
+            st = agree(b, columns_on_rows(b, hi - lo, d + k0 + lo, bw, nrows, rows, V + lo * nrows));
+            if (!st) st = ffc__mpi_allgather(b->rcomm, V, count);
+        } else
+            st = columns_on_rows(b, nc, d + k0, bw, nrows, rows, V);
+        if (b->mp && !st) b->info.backsolves += nc;
+        for (long k = 0; k < nc && !st; k++) {
+            for (long r = 0; r < nrows; r++) x[rows[r]] = V[r + k * nrows];
+            st = ffc_reduced_add(n, b->ld, b->m, b->dof, b->G, x, d[k0 + k]);
+            for (long r = 0; r < b->nr && !st; r++) b->H[r + b->m * b->nr] = x[b->rows[r]];
+            for (long r = 0; r < nrows; r++) x[rows[r]] = 0.0;
+            if (!st) b->m++;
+        }
+    }
+    free(rows); free(d); free(x); free(bw); free(V);
+    if (st) return st;
     b->info.columns += nnew;
     return FFC_OK;
 }
@@ -728,7 +760,7 @@ void ffc__bulk_info(const ffc__bulk *b, ffc_solve_info *info)
 {
     if (b) *info = b->info;
     else memset(info, 0, sizeof *info);
-    info->ranks = 1;
+    info->ranks = b ? b->rsize : 1;
     if (b && b->mp) ffc__mumps_info(b->mp, &info->ranks, &info->factor_mb, &info->factor_mb_max);
 }
 

@@ -18,6 +18,11 @@ void ffc__bulk_free(ffc__bulk *b);
 /* Factorizes with parallel MUMPS over the Fortran communicator fcomm
  * instead of CHOLMOD (FFC_ERR_UNAVAILABLE in a build without MPI). */
 int ffc__bulk_set_mumps(ffc__bulk *b, int fcomm);
+/* Factorizes with CHOLMOD on every rank of the Fortran communicator fcomm
+ * (each holds the whole factor; every rank makes the same calls) and
+ * shares the compliance columns out over them (FFC_ERR_UNAVAILABLE in a
+ * build without MPI). */
+int ffc__bulk_set_replicated(ffc__bulk *b, int fcomm);
 long ffc__bulk_n(const ffc__bulk *b);
 /* The mean diagonal of K's rows that are not Dirichlet rows (force/length). */
 double ffc__bulk_kfree(const ffc__bulk *b);

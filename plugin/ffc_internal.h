@@ -54,4 +54,13 @@ double ffc__dual_blend(const ffc__dual_moments *m, double Mi[3][3]);
 /* and A = s D M^-1 + (1 - s) I. */
 void ffc__dual_matrix(const ffc__dual_moments *m, double A[3][3]);
 
+/* The ranks of a communicator (its Fortran handle fcomm; ffc_mpi.c): this
+ * process's rank and their count (0 and 1 without MPI or before MPI_Init);
+ * the smallest of every rank's v (a collective call: the ranks agree on
+ * a branch); and an all-gather in place: rank r's count[r] doubles sit in
+ * buf after those of the ranks before it, and every rank receives all. */
+int ffc__mpi_ranks(int fcomm, int *rank, int *size);
+int ffc__mpi_min(int fcomm, int v);
+int ffc__mpi_allgather(int fcomm, double buf[], const long count[]);
+
 #endif

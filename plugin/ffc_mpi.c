@@ -1,8 +1,10 @@
 /* ffc_mpi.c: the ranks of MPI_COMM_WORLD, reductions over them, and this
  * process's peak memory (a build without -DFFC_MPI is one rank). */
+#include <stdlib.h>
 #include <sys/resource.h>
 
 #include "ffc.h"
+#include "ffc_internal.h"
 
 #ifdef FFC_MPI
 #include <mpi.h>
@@ -52,6 +54,46 @@ int ffc_mpi_barrier(void)
     return FFC_OK;
 }
 
+int ffc__mpi_ranks(int fcomm, int *rank, int *size)
+{
+    int r = 0, n = 1;
+    if (running()) {
+        const MPI_Comm c = MPI_Comm_f2c((MPI_Fint)fcomm);
+        MPI_Comm_rank(c, &r);
+        MPI_Comm_size(c, &n);
+    }
+    *rank = r;
+    *size = n;
+    return FFC_OK;
+}
+
+int ffc__mpi_min(int fcomm, int v)
+{
+    int all = v;
+    if (running()) MPI_Allreduce(&v, &all, 1, MPI_INT, MPI_MIN, MPI_Comm_f2c((MPI_Fint)fcomm));
+    return all;
+}
+
+int ffc__mpi_allgather(int fcomm, double buf[], const long count[])
+{
+    if (!running()) return FFC_OK;
+    const MPI_Comm c = MPI_Comm_f2c((MPI_Fint)fcomm);
+    int n = 1;
+    MPI_Comm_size(c, &n);
+    int *cnt = malloc(2 * (size_t)n * sizeof(int)), *dsp = cnt ? cnt + n : NULL;
+    int ok = cnt != NULL;
+    long off = 0;
+    for (int r = 0; r < n && ok; r++) {
+        ok = count[r] >= 0 && count[r] <= 2147483647L && off <= 2147483647L;
+        if (ok) { cnt[r] = (int)count[r]; dsp[r] = (int)off; off += count[r]; }
+    }
+    int st = ffc__mpi_min(fcomm, ok) ? FFC_OK : FFC_ERR_SIZE;
+    if (!st && MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, buf, cnt, dsp, MPI_DOUBLE, c) != MPI_SUCCESS)
+        st = FFC_ERR_UNAVAILABLE;
+    free(cnt);
+    return st;
+}
+
 #else
 
 int ffc_mpi_world(int *rank, int *size, int *fcomm)
@@ -71,6 +113,26 @@ int ffc_mpi_allreduce(double v[], long n, int op)
 }
 
 int ffc_mpi_barrier(void) { return FFC_OK; }
+
+int ffc__mpi_ranks(int fcomm, int *rank, int *size)
+{
+    (void)fcomm;
+    *rank = 0;
+    *size = 1;
+    return FFC_OK;
+}
+
+int ffc__mpi_min(int fcomm, int v)
+{
+    (void)fcomm;
+    return v;
+}
+
+int ffc__mpi_allgather(int fcomm, double buf[], const long count[])
+{
+    (void)fcomm; (void)buf; (void)count;
+    return FFC_OK;
+}
 
 #endif
 

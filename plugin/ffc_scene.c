@@ -998,7 +998,8 @@ int ffc_scene_set_bulk(ffc_scene *s, long n, long nt, const long Ti[], const lon
     ffc__bulk *b = NULL;
     int st = ffc__bulk_create(n, nt, Ti, Tj, Tv, mmax, &b, bad);
     if (st) return st;
-    if (s->par.engine == FFC_ENGINE_MUMPS && (st = ffc__bulk_set_mumps(b, s->par.comm))) {
+    if ((s->par.engine == FFC_ENGINE_MUMPS && (st = ffc__bulk_set_mumps(b, s->par.comm))) ||
+        (s->par.engine == FFC_ENGINE_REPLICATED && (st = ffc__bulk_set_replicated(b, s->par.comm)))) {
         ffc__bulk_free(b);
         return st;
     }
@@ -1010,8 +1011,9 @@ int ffc_scene_set_bulk(ffc_scene *s, long n, long nt, const long Ti[], const lon
 int ffc_scene_set_parallel(ffc_scene *s, const ffc_parallel *p)
 {
     if (!s || !p) return FFC_ERR_NULL;
-    if (p->engine != FFC_ENGINE_CHOLMOD && p->engine != FFC_ENGINE_MUMPS) return FFC_ERR_VALUE;
-    if (p->engine == FFC_ENGINE_MUMPS && !ffc_has_mpi()) return FFC_ERR_UNAVAILABLE;
+    if (p->engine != FFC_ENGINE_CHOLMOD && p->engine != FFC_ENGINE_MUMPS && p->engine != FFC_ENGINE_REPLICATED)
+        return FFC_ERR_VALUE;
+    if (p->engine != FFC_ENGINE_CHOLMOD && !ffc_has_mpi()) return FFC_ERR_UNAVAILABLE;
     s->par = *p;
     return FFC_OK;
 }

@@ -732,8 +732,9 @@ void scene_error(const char *fn, int st, long bad, const char *what)
     fail(fn, s.str());
 }
 
-// ffcScene C(Th, effects = 0, order = 1)
-basicAC_F0::name_and_type scene_names[] = {{"effects", &typeid(long)}, {"order", &typeid(long)}};
+// ffcScene C(Th, effects = 0, order = 1, engine = "auto")
+basicAC_F0::name_and_type scene_names[] = {
+    {"effects", &typeid(long)}, {"order", &typeid(long)}, {"engine", &typeid(string *)}};
 
 FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh)
 {
@@ -746,6 +747,9 @@ FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh)
         s << "argument 'order': " << order << " is not 1 ([P1,P1,P1] displacement) or 2 ([P2,P2,P2])";
         fail(fn, s.str());
     }
+    const std::string engine = nm.str(2, "auto");
+    if (engine != "auto" && engine != "replicated" && engine != "mumps")
+        fail(fn, "argument 'engine': '" + engine + "' is not \"auto\", \"replicated\" or \"mumps\"");
     std::unique_ptr<SceneData> d(new SceneData);
     mesh_arrays(Th, d->m);
     if (d->m.nbe == 0) fail(fn, "argument 'Th': the mesh has no boundary faces");
@@ -763,10 +767,12 @@ FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh)
     }
     int st = ffc_scene_create(order == 2 ? 6 : 3, d->nn, X, d->m.nt, T.data(), &fx, &d->s);
     if (st) scene_error(fn, st, -1, "the scene");
-    int rank, ranks, fcomm;   // several ranks (FreeFem++-mpi): the bulk is factorized by parallel MUMPS
+    // several ranks (FreeFem++-mpi): the bulk factorized by CHOLMOD on every rank with the compliance
+    // columns shared out ("auto", "replicated"), or by parallel MUMPS ("mumps")
+    int rank, ranks, fcomm;
     ffc_mpi_world(&rank, &ranks, &fcomm);
     if (ranks > 1) {
-        const ffc_parallel par = {FFC_ENGINE_MUMPS, fcomm, 0};
+        const ffc_parallel par = {engine == "mumps" ? FFC_ENGINE_MUMPS : FFC_ENGINE_REPLICATED, fcomm, 0};
         st = ffc_scene_set_parallel(d->s, &par);
         if (st) scene_error(fn, st, -1, "the scene's parallel engine");
     }
@@ -1799,7 +1805,7 @@ void init_scene()
     zzzfff->Add("ffcScene", atype<FFScene *>());
     typedef FFScene *S;
     typedef KN<double> *V;
-    TheOperators->Add("<-", named<S, S, pmesh3>("ffcScene", scene_names, 2, sceneInit));
+    TheOperators->Add("<-", named<S, S, pmesh3>("ffcScene", scene_names, 3, sceneInit));
     Global.Add("ffcAddPair", "(", named<long, S, KN<long> *, KN<long> *>("ffcAddPair", pair_names, PO_N, addPair));
     Global.Add("ffcAddPair", "(", named<long, S, long, long>("ffcAddPair", pair_names, PO_N, addPairL));
     Global.Add("ffcAddPair", "(", named<long, S, long, KN<long> *>("ffcAddPair", pair_names, PO_N, addPairLA));

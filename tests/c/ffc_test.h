@@ -175,4 +175,40 @@ static inline void test_unit_square(double z, double X[], long base)
     }
 }
 
+/* A lattice of ln^3 nodes joined by springs along the axes, each a 3 x 3
+ * stiffness k (d d' + I / 5) (d the spring's direction), the nodes of the
+ * plane z = 0 on Dirichlet rows (diagonal tgv); n = 3 ln^3 dofs.  K's
+ * triplets (both triangles, at most 40 ln^3) and, unless Kd is NULL, its
+ * dense copy Kd[n * n].  Returns the triplets' count. */
+static inline long test_lattice(int ln, double tgv, long Ti[], long Tj[], double Tv[], double *Kd)
+{
+    const long n = 3L * ln * ln * ln;
+    long t = 0;
+    for (int z = 0; z < ln; z++)
+        for (int y = 0; y < ln; y++)
+            for (int x = 0; x < ln; x++)
+                for (int d = 0; d < 3; d++) {
+                    const int c[3] = {x + (d == 0), y + (d == 1), z + (d == 2)};
+                    if (c[d] >= ln) continue;
+                    const long a = x + ln * (y + ln * z), e = c[0] + ln * (c[1] + ln * c[2]);
+                    const double k = 10.0 + (a % 7);
+                    for (int i = 0; i < 3; i++)
+                        for (int j = 0; j < 3; j++) {
+                            const double v = k * ((i == d && j == d) + (i == j) / 5.0);
+                            if (v == 0.0) continue;
+                            const long p[4][2] = {{a, a}, {e, e}, {a, e}, {e, a}};
+                            const double sg[4] = {v, v, -v, -v};
+                            for (int q = 0; q < 4; q++) {
+                                Ti[t] = 3 * p[q][0] + i; Tj[t] = 3 * p[q][1] + j; Tv[t] = sg[q]; t++;
+                            }
+                        }
+                }
+    for (long i = 0; i < 3L * ln * ln; i++) { Ti[t] = i; Tj[t] = i; Tv[t] = tgv; t++; }
+    if (Kd) {
+        memset(Kd, 0, sizeof(double) * n * n);
+        for (long k = 0; k < t; k++) Kd[Ti[k] * n + Tj[k]] += Tv[k];
+    }
+    return t;
+}
+
 #endif

@@ -258,38 +258,8 @@ static void test_no_mpi(void **state)
 }
 
 
-/* A lattice of LN^3 nodes joined by springs along the axes, each a 3 x 3
- * stiffness k (d d' + I / 5) (d the spring's direction), the nodes of the
- * plane z = 0 on Dirichlet rows (diagonal TGV); 3 LN^3 dofs. */
 #define LN 6
 #define LD (3 * LN * LN * LN)
-static long lattice(long Ti[], long Tj[], double Tv[], double *Kd)
-{
-    long t = 0;
-    memset(Kd, 0, sizeof(double) * LD * LD);
-    for (int z = 0; z < LN; z++)
-        for (int y = 0; y < LN; y++)
-            for (int x = 0; x < LN; x++)
-                for (int d = 0; d < 3; d++) {
-                    const int c[3] = {x + (d == 0), y + (d == 1), z + (d == 2)};
-                    if (c[d] >= LN) continue;
-                    const long a = x + LN * (y + LN * z), e = c[0] + LN * (c[1] + LN * c[2]);
-                    const double k = 10.0 + (a % 7);
-                    for (int i = 0; i < 3; i++)
-                        for (int j = 0; j < 3; j++) {
-                            const double v = k * ((i == d && j == d) + (i == j) / 5.0);
-                            if (v == 0.0) continue;
-                            const long p[4][2] = {{a, a}, {e, e}, {a, e}, {e, a}};
-                            const double sg[4] = {v, v, -v, -v};
-                            for (int q = 0; q < 4; q++) {
-                                Ti[t] = 3 * p[q][0] + i; Tj[t] = 3 * p[q][1] + j; Tv[t] = sg[q]; t++;
-                            }
-                        }
-                }
-    for (long i = 0; i < 3 * LN * LN; i++) { Ti[t] = i; Tj[t] = i; Tv[t] = TGV; t++; }
-    for (long k = 0; k < t; k++) Kd[Ti[k] * LD + Tj[k]] += Tv[k];
-    return t;
-}
 
 /* The compliance columns G (C x C) and H (R x C) against K^-1 from a dense
  * Cholesky of the lattice's K, with a supernodal factor and pruned solves,
@@ -304,7 +274,7 @@ static void test_pruned_columns(void **state)
     enum { NT = 40 * LN * LN * LN };
     long *Ti = malloc(NT * sizeof(long)), *Tj = malloc(NT * sizeof(long)), bad = -1;
     double *Tv = malloc(NT * sizeof(double)), *Kd = malloc(sizeof(double) * LD * LD);
-    const long nt = lattice(Ti, Tj, Tv, Kd);
+    const long nt = test_lattice(LN, TGV, Ti, Tj, Tv, Kd);
     assert_true(nt <= NT);
     /* R: the dofs of the top plane; C: 24 of them, then 18 more of which 9 interior ones */
     long rows[3 * LN * LN], nd1[24], nd2[18];

@@ -1,9 +1,10 @@
 #!/bin/sh
 # same_answers.sh: case studies on one process and on N ranks of
 # FreeFem++-mpi (sh scripts/ff -np N) give the same answers, to 1e-8
-# relative (the runs differ only in the bulk factorization: CHOLMOD or
-# parallel MUMPS, both backward stable, and every Newton loop stops at a
-# residual of 1e-10 or below of its force scale).
+# relative (the runs differ only in the bulk factorization and who solves
+# which compliance column: CHOLMOD, CHOLMOD on every rank or parallel
+# MUMPS, all backward stable, and every Newton loop stops at a residual of
+# 1e-10 or below of its force scale).
 #   sh tests/mpi/same_answers.sh [N] [quick|full]
 # quick: the coarse Hertz (augmented Lagrangian, node-to-surface, mortar)
 # and the patch test; full: also the sliding block and Cattaneo-Mindlin.
@@ -46,6 +47,8 @@ check hertz-mortar hertz "$H" -hc 0.1 -vtk 0 -method mortar
 # (a support of 384 contact dofs: the condensed Newton's dense LU shared
 # over the ranks, ScaLAPACK)
 check hertz-025 hertz "$H" -hc 0.025 -vtk 0
+# the bulk factorized by parallel MUMPS instead of CHOLMOD on every rank
+check hertz-mumps hertz "$H" -hc 0.1 -vtk 0 -engine mumps
 # the full-system path: K + Kc factorized at each Newton iteration
 # (UMFPACK on one process, parallel MUMPS on N ranks), and finite
 # deformation (the same path, the bulk tangent changing)

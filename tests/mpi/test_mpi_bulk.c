@@ -14,6 +14,7 @@
 #include "ffc_test.h"
 #include "ffc_pdense.h"   /* (internal: the shared dense LU) */
 #include "ffc_mumps.h"    /* (internal: the bulk's MUMPS instance) */
+#include "ffc_bulk.h"     /* (internal: the bulk's compliance columns) */
 
 #define NV 300
 #define N (3 * NV)
@@ -85,7 +86,7 @@ static void solve(ffc_engine eng, int ndir, int with_contact, double x[N], int *
     int ranks;
     ffc_mpi_world(NULL, &ranks, NULL);
     if (*st == FFC_OK) {
-        assert_int_equal(in.ranks, eng == FFC_ENGINE_MUMPS ? ranks : 1);
+        assert_int_equal(in.ranks, eng == FFC_ENGINE_CHOLMOD ? 1 : ranks);
         if (eng == FFC_ENGINE_MUMPS) assert_true(in.factor_mb_max > 0);
         if (with_contact) assert_int_equal(in.m, NC);
     }
@@ -107,16 +108,18 @@ static double rank_spread(int n, const double x[])
     return d;
 }
 
-/* MUMPS's solution against CHOLMOD's, with and without contact dofs; the
+/* MUMPS's solution and the replicated CHOLMOD's (its compliance columns
+ * solved by one rank or another) against CHOLMOD's in one process, with
+ * and without contact dofs; the
  * tolerance: both are backward stable with iterative refinement to 1e-13
  * of the residual scale, and K's condition here is below 1e4 */
 static void test_same_as_cholmod(void **state)
 {
     (void)state;
-    for (int wc = 0; wc < 2; wc++) {
+    for (int wc = 0; wc < 4; wc++) {   /* (2, 3: the replicated CHOLMOD, its columns shared out) */
         int st1, st2;
-        solve(FFC_ENGINE_CHOLMOD, 3, wc, x1, &st1);
-        solve(FFC_ENGINE_MUMPS, 3, wc, x2, &st2);
+        solve(FFC_ENGINE_CHOLMOD, 3, wc % 2, x1, &st1);
+        solve(wc < 2 ? FFC_ENGINE_MUMPS : FFC_ENGINE_REPLICATED, 3, wc % 2, x2, &st2);
         assert_int_equal(st1, FFC_OK);
         assert_int_equal(st2, FFC_OK);
         double d = 0.0, xm = 0.0;
@@ -347,6 +350,69 @@ static void test_shared_lu(void **state)
     ffc__pdense_free(d);
 }
 
+
+/* The replicated CHOLMOD (supernodal, pruned solves) shares the
+ * compliance columns out over the ranks: every rank ends with the same G
+ * and H (same bits) as one process's computing them all, in the same
+ * order; C grown in two calls (24 columns, then 18: the shares are
+ * uneven on 4 ranks), some columns outside the rows R.  Tolerance: the
+ * same solves of the same factor, 1e-14 of K^-1's largest entry. */
+static void test_replicated_columns(void **state)
+{
+    (void)state;
+    enum { LN = 6, LD = 3 * LN * LN * LN, NT = 40 * LN * LN * LN };
+    long *Li = malloc(NT * sizeof(long)), *Lj = malloc(NT * sizeof(long)), bad = -1;
+    double *Lv = malloc(NT * sizeof(double));
+    const long nt = test_lattice(LN, 1e30, Li, Lj, Lv, NULL);
+    long rows[3 * LN * LN], nd1[24], nd2[18];
+    const long top = 3 * LN * LN * (LN - 1);
+    for (long k = 0; k < 3 * LN * LN; k++) rows[k] = top + k;
+    for (long k = 0; k < 24; k++) nd1[k] = top + 3 * k;
+    for (long k = 0; k < 9; k++) nd2[k] = top + 3 * k + 1;
+    for (long k = 0; k < 9; k++) nd2[9 + k] = 3 * LN * LN * 2 + 5 * k + 2;
+    int fc, ranks;
+    ffc_mpi_world(NULL, &ranks, &fc);
+    ffc__bulk *b[2] = {NULL, NULL};
+    for (int k = 0; k < 2; k++) {
+        assert_int_equal(ffc__bulk_create(LD, nt, Li, Lj, Lv, 1000, &b[k], &bad), FFC_OK);
+        if (k == 1) assert_int_equal(ffc__bulk_set_replicated(b[k], fc), FFC_OK);
+        ffc__bulk_set_columns_mode(b[k], 1, 1);
+        assert_int_equal(ffc__bulk_columns(b[k], 3 * LN * LN, rows, 24, nd1, &bad), FFC_OK);
+        assert_int_equal(ffc__bulk_columns(b[k], 3 * LN * LN, rows, 18, nd2, &bad), FFC_OK);
+    }
+    const long *dof[2];
+    const double *G[2], *H[2];
+    long ld[2];
+    int super[2];
+    double share[2];
+    for (int k = 0; k < 2; k++)
+        assert_int_equal(ffc__bulk_compliance(b[k], &dof[k], &G[k], &ld[k], &H[k], &super[k], &share[k]), 42);
+    assert_true(super[0] && super[1] && share[1] > 0.0 && share[1] < 0.9);   /* pruned */
+    ffc_solve_info in;
+    ffc__bulk_info(b[1], &in);
+    assert_int_equal(in.ranks, ranks);
+    assert_int_equal(in.columns, 42);
+    if (ranks > 1) assert_true(in.backsolves < 42);   /* each rank solved its share only */
+    double gmax = 0.0, d = 0.0;
+    for (long j = 0; j < 42; j++) {
+        assert_int_equal(dof[1][j], dof[0][j]);
+        for (long i = 0; i < 42; i++) {
+            gmax = fmax(gmax, fabs(G[0][i + j * ld[0]]));
+            d = fmax(d, fabs(G[1][i + j * ld[1]] - G[0][i + j * ld[0]]));
+        }
+        for (long r = 0; r < 3 * LN * LN; r++) d = fmax(d, fabs(H[1][r + j * 3 * LN * LN] - H[0][r + j * 3 * LN * LN]));
+    }
+    assert_true(gmax > 0.0);
+    assert_close(d, 0.0, 1e-14 * gmax);
+    double *g = malloc(42 * 42 * sizeof(double));
+    for (long j = 0; j < 42; j++)
+        for (long i = 0; i < 42; i++) g[i + 42 * j] = G[1][i + j * ld[1]];
+    assert_close(rank_spread(42 * 42, g), 0.0, 0.0);
+    free(g);
+    for (int k = 0; k < 2; k++) ffc__bulk_free(b[k]);
+    free(Li); free(Lj); free(Lv);
+}
+
 static void test_bad_engine(void **state)
 {
     (void)state;
@@ -377,6 +443,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_pivoting_workspace),
         cmocka_unit_test(test_inverse_entries),
         cmocka_unit_test(test_shared_lu),
+        cmocka_unit_test(test_replicated_columns),
         cmocka_unit_test(test_bad_engine),
     };
     const int failed = cmocka_run_group_tests(tests, NULL, NULL);
