@@ -864,8 +864,8 @@ long ffc_scene_surface_mask(const ffc_scene *s, long n, double mask[]);
  * K + S is factorized (CHOLMOD) at the first solve, S = s I on the dofs of
  * that first contact tangent (s the mean diagonal of the rows that are not
  * Dirichlet rows: a body that only contact holds makes K singular); the
- * compliance G of the contact dofs grows by block back-solves when Kc
- * touches new dofs; each solve is two back-solves and a dense LU of
+ * compliance G of the contact dofs grows by block solves (pruned to
+ * the rows read) when Kc touches new dofs; each solve is two back-solves and a dense LU of
  * I + G Kcc (m x m, LAPACK), then at most two steps of iterative
  * refinement.  Dirichlet rows are those whose diagonal is at least 1e12
  * times the median diagonal: their value is b_i / K_ii (the tgv rows'
@@ -975,7 +975,7 @@ int ffc_scene_solve_info(const ffc_scene *s, ffc_solve_info *info);
  * dofs.  From u (residual r[n] given), the increment d solves
  * K d + F_c(u + d) = b' = -(r - F_c(u)).  Let C be the free dofs that
  * the contact force (or its tangent) has reached, G = P_C K^-1 P_C^T their
- * compliance (block back-solves, kept between calls), d0 = K^-1 b'.  The
+ * compliance (pruned block solves, kept between calls), d0 = K^-1 b'.  The
  * free dofs outside C carry no contact force, so with y = d_C the
  * interior is eliminated exactly and
  *     rho(y) = G^-1 (y - d0_C) + F_c(u + d)_C = 0     (m equations)

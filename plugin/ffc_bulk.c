@@ -1,6 +1,6 @@
 /* ffc_bulk.c: the bulk stiffness of a small-strain scene factorized once
  * (CHOLMOD) and the Newton systems (K + Kc) x = b solved on the contact
- * dofs (the compliance G grown by block back-solves, see ffc.h). */
+ * dofs (the compliance G grown by pruned block solves, see ffc.h). */
 #define _POSIX_C_SOURCE 199309L /* clock_gettime */
 #include <math.h>
 #include <stdlib.h>

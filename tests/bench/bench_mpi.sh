@@ -8,8 +8,9 @@
 # the 1-rank wall over this row's; factor_mb_per_rank: MUMPS's
 # factorization memory on the largest rank; peak_mb_per_rank: the largest
 # rank's peak resident memory).
-#   sh tests/bench/bench_mpi.sh [quick|full] [N]   (quick: h_c 0.025 and 0.0125,
-#   and finite deformation at 0.025; full: also finite deformation at 0.0125
+#   sh tests/bench/bench_mpi.sh [quick|full] [N]   (quick: h_c 0.025 and 0.0125
+#   (CHOLMOD on every rank, and parallel MUMPS), and finite deformation at
+#   0.025; full: also finite deformation at 0.0125
 #   and small strain at h_c 0.008, about 150k dofs)
 cd "$(dirname "$0")/../.." || exit 2
 mode=${1:-quick}; np=${2:-2}
@@ -38,6 +39,8 @@ pair() {   # pair <case> <options...>
 }
 pair hertz -hc 0.025
 pair hertz -hc 0.0125
+# the same on parallel MUMPS instead of CHOLMOD on every rank
+pair hertz -hc 0.0125 -engine mumps
 # the full-system path: finite deformation, K(u) + Kc factorized at every
 # Newton iteration (UMFPACK / parallel MUMPS)
 pair hertz -hc 0.025 -finite 1
