@@ -567,11 +567,11 @@ static int agree(const ffc__bulk *b, int st)
 
 static int add_columns(ffc__bulk *b, long nnew, const long nd[])
 {
-    int st = grow(b, b->m + nnew);
+    int st = agree(b, grow(b, b->m + nnew));
     if (st) return st;
     const long n = b->n, m0 = b->m;
     const int pruned = !b->mp && b->prune && b->L->is_super;
-    if (pruned && (st = prune_tree(b))) return st;
+    if ((st = agree(b, pruned ? prune_tree(b) : FFC_OK))) return st;
     long *rows = malloc((size_t)(m0 + nnew + b->nr + 1) * sizeof *rows), nrows = 0;
     long *d = malloc((size_t)(nnew + 1) * sizeof *d);
     double *x = calloc((size_t)n, sizeof *x);
