@@ -110,6 +110,16 @@ struct ffc__bulk {
     long swcap;
 };
 
+/* Every rank of a shared factorization (MUMPS, or CHOLMOD on every rank)
+ * takes the same branch: st, or FFC_ERR_MEMORY where another rank failed
+ * (a collective call; st itself with one process). */
+static int agree(const ffc__bulk *b, int st)
+{
+    const int ok = b->mp ? ffc__mumps_agree(b->mp, st == FFC_OK) : b->rsize > 1 ? ffc__mpi_min(b->rcomm, st == FFC_OK)
+                                                                              : st == FFC_OK;
+    return ok ? FFC_OK : st ? st : FFC_ERR_MEMORY;
+}
+
 static void bulk_free_factor(ffc__bulk *b)
 {
     if (!b->started) return;
@@ -247,6 +257,7 @@ int ffc__bulk_set_mumps(ffc__bulk *b, int fcomm)
     b->kdist = 0;
     b->ka = 0;
     if (ffc__pdense_create(fcomm, &b->pd)) b->pd = NULL;   /* (without it, dense LUs on every rank) */
+    if (!ffc__mumps_agree(b->mp, b->pd != NULL)) { ffc__pdense_free(b->pd); b->pd = NULL; }   /* (on every rank alike) */
     return FFC_OK;
 }
 
@@ -271,6 +282,7 @@ int ffc__bulk_set_replicated(ffc__bulk *b, int fcomm)
     b->kdist = 0;
     b->ka = 0;
     if (size > 1 && ffc__pdense_create(fcomm, &b->pd)) b->pd = NULL;   /* (the condensed Newton's dense LUs) */
+    if (size > 1 && !ffc__mpi_min(fcomm, b->pd != NULL)) { ffc__pdense_free(b->pd); b->pd = NULL; }
     return FFC_OK;
 }
 
@@ -318,8 +330,11 @@ static int backsolve(ffc__bulk *b, const double rhs[], double y[])
     if (b->mp) {
         const int st = ffc__mumps_solve(b->mp, 1, b->B->x);
         if (st) return st;
-    } else if (!cholmod_solve2(CHOLMOD_A, b->L, b->B, NULL, &b->X, NULL, &b->Y, &b->E, &b->cc))
-        return FFC_ERR_MEMORY;
+    } else {
+        const int ok = cholmod_solve2(CHOLMOD_A, b->L, b->B, NULL, &b->X, NULL, &b->Y, &b->E, &b->cc);
+        const int st = b->rsize > 1 ? agree(b, ok ? FFC_OK : FFC_ERR_MEMORY) : ok ? FFC_OK : FFC_ERR_MEMORY;
+        if (st) return st;
+    }
     memcpy(y, b->mp ? b->B->x : b->X->x, (size_t)b->n * sizeof(double));
     b->info.backsolves++;
     for (long i = 0; i < b->n; i++)
@@ -340,7 +355,7 @@ static int factorize(ffc__bulk *b, long nnew, const long nd[])
         b->cc.error_handler = NULL;
         b->started = 1;
     }
-    if (b->force_super) b->cc.supernodal = CHOLMOD_SUPERNODAL;
+    b->cc.supernodal = b->force_super ? CHOLMOD_SUPERNODAL : CHOLMOD_AUTO;
     for (long k = 0; k < nnew; k++) b->sh[nd[k]] = b->kfree;
     long nlow = 0;
     for (long t = 0; t < b->nt; t++) nlow += b->Ti[t] >= b->Tj[t] && !b->big[b->Ti[t]] && !b->big[b->Tj[t]];
@@ -381,6 +396,7 @@ static int factorize(ffc__bulk *b, long nnew, const long nd[])
         }
     }
     if (A) cholmod_free_sparse(&A, &b->cc);
+    if (b->rsize > 1) st = agree(b, st);   /* (CHOLMOD on every rank: one rank short of memory) */
     if (!st) {
         b->B = cholmod_zeros((size_t)b->n, 1, CHOLMOD_REAL, &b->cc);
         b->Bb = cholmod_zeros((size_t)b->n, BLOCK, CHOLMOD_REAL, &b->cc);
@@ -518,7 +534,9 @@ static int whole_block(ffc__bulk *b, long nbl, const long d[], long nrows, const
     double *bx = b->Bb->x;
     memset(bx, 0, (size_t)n * BLOCK * sizeof(double));
     for (long k = 0; k < nbl; k++) bx[d[k] + k * n] = 1.0;
-    if (!cholmod_solve2(CHOLMOD_A, b->L, b->Bb, NULL, &b->Xb, NULL, &b->Yb, &b->Eb, &b->cc)) return FFC_ERR_MEMORY;
+    const int ok = cholmod_solve2(CHOLMOD_A, b->L, b->Bb, NULL, &b->Xb, NULL, &b->Yb, &b->Eb, &b->cc);
+    for (long k = 0; k < nbl; k++) bx[d[k] + k * n] = 0.0;   /* (Bb zero again, as pruned_block wants it) */
+    if (!ok) return FFC_ERR_MEMORY;
     const double *xb = b->Xb->x;
     for (long k = 0; k < nbl; k++)
         for (long r = 0; r < nrows; r++) V[r + k * nrows] = xb[rows[r] + k * n];
@@ -558,12 +576,6 @@ static int columns_on_rows(ffc__bulk *b, long nc, const long d[], const unsigned
  * is every rank's (FFC_ERR_MEMORY when it was another's). */
 enum { INV_ENTRIES = 1 << 21 };   /* values per piece (MUMPS's transient work: about 20 bytes each, 40 MB;
                                      fewer columns per solve lost its pruning's gain) */
-static int agree(const ffc__bulk *b, int st)
-{
-    const int ok = b->mp ? ffc__mumps_agree(b->mp, st == FFC_OK) : b->rsize > 1 ? ffc__mpi_min(b->rcomm, st == FFC_OK)
-                                                                              : st == FFC_OK;
-    return ok ? FFC_OK : st ? st : FFC_ERR_MEMORY;
-}
 
 static int add_columns(ffc__bulk *b, long nnew, const long nd[])
 {
@@ -1022,10 +1034,10 @@ static double dot(long m, const double x[], const double y[])
     return v;
 }
 
-enum { KRYLOV = 20 };
+enum { KRYLOV = 20 };       /* GMRES: basis vectors per cycle */
 enum { RANKED_SLOW = 2 };   /* the condensed Newton: ranked iterations that did not gain 10x on an
                                unchanged active set before the rest of a call takes the consistent
-                               tangent */   /* GMRES: basis vectors per cycle */
+                               tangent */
 
 /* Solves (I + Gaa M) t = t (a x a, both dense column-major) by GMRES,
  * right-preconditioned with the kept LU of an earlier system on the same
@@ -1495,7 +1507,8 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
     int status = FFC_INFO_MAXIT, restart = 0, starting = 1;
     double last = 1.0, rprev = HUGE_VAL;
     int stall = 0, slow = 0, tmode = o->tangent;
-    long nal = -1, nap = -2;   /* the ranked terms of the last direction and of the one before */
+    long nal = -1, nap = -2;   /* the ranked terms of the last direction and of the one before it (at
+                                  the state before; the count stands for the active set) */
     for (int it = 0; !st; it++) {
         const int tan = it < o->max_iter ? tmode : FFC_TANGENT_NONE;
         st = contact_eval(b, fn, ctx, w, tan, &nt, &fm, bad);
@@ -1526,6 +1539,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
          * eps |Kc G| |z|: with a stiff penalty it lies above a tight tol).
          * An iteration restarted because C grew in its line search is the
          * same state: not counted */
+        const int fresh = !restart;   /* (a restart repeats the state: its direction replaces the last) */
         if (!restart) {
             if (info->nhist < FFC_NEWTON_HIST) info->hist[info->nhist++] = rn;
             stall = rn < 0.5 * rprev ? 0 : stall + 1;
@@ -1563,7 +1577,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
                        : direction(b, nt, rho, dy, dz, ap, ad, q, tt, ss, &na, bad);
         if (st) break;
         if (na > info->support) info->support = na;
-        nap = nal;
+        if (fresh) nap = nal;
         nal = na;
         /* the step of y that the step of z makes: G dz (= dy to the accuracy
          * of the dense solve) */

@@ -57,7 +57,8 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
 /* Test hooks.  The factor's kind (supernodal = 1: CHOLMOD's supernodal
  * factor whatever the size; 0: CHOLMOD chooses) and the compliance
  * columns' solves (prune = 1: pruned to the paths of the rows read, the
- * default; 0: whole back-solves), both for the next factorization. */
+ * default; 0: whole back-solves): the factor's kind from the next
+ * factorization, the solves from the next compliance columns. */
 void ffc__bulk_set_columns_mode(ffc__bulk *b, int supernodal, int prune);
 /* Factorizes K if not yet, joins rows[nr] to the rows R and adds the
  * compliance columns of the dofs nd[nnew] (not yet in C). */

@@ -264,7 +264,8 @@ static void test_no_mpi(void **state)
 /* The compliance columns G (C x C) and H (R x C) against K^-1 from a dense
  * Cholesky of the lattice's K, with a supernodal factor and pruned solves,
  * the same factor and whole back-solves, and the factor CHOLMOD chooses;
- * C grown in two calls, some of its dofs outside R.  Tolerance: 1e-10 of
+ * C grown in two calls (72 columns: three blocks of solves; then 30),
+ * some of its dofs outside R.  Tolerance: 1e-10 of
  * the largest entry of K^-1 (backward-stable solves of a matrix of
  * condition ~1e3 on its free rows; the Dirichlet rows' entries are 1/TGV
  * in the dense inverse and 0 in the factor's, both far below it). */
@@ -276,52 +277,54 @@ static void test_pruned_columns(void **state)
     double *Tv = malloc(NT * sizeof(double)), *Kd = malloc(sizeof(double) * LD * LD);
     const long nt = test_lattice(LN, TGV, Ti, Tj, Tv, Kd);
     assert_true(nt <= NT);
-    /* R: the dofs of the top plane; C: 24 of them, then 18 more of which 9 interior ones */
-    long rows[3 * LN * LN], nd1[24], nd2[18];
+    /* R: the dofs of the top plane; C: 72 of them (three blocks of solves), then 30 more of which 9
+     * interior ones */
+    enum { C1 = 72, C2 = 30, CT = C1 + C2 };
+    long rows[3 * LN * LN], nd1[C1], nd2[C2];
     const long top = 3 * LN * LN * (LN - 1);
     for (long k = 0; k < 3 * LN * LN; k++) rows[k] = top + k;
-    for (long k = 0; k < 24; k++) nd1[k] = top + 3 * k;
-    for (long k = 0; k < 9; k++) nd2[k] = top + 3 * k + 1;
-    for (long k = 0; k < 9; k++) nd2[9 + k] = 3 * LN * LN * 2 + 5 * k + 2;
+    for (long k = 0; k < C1; k++) nd1[k] = top + k;
+    for (long k = 0; k < C2 - 9; k++) nd2[k] = top + C1 + k;
+    for (long k = 0; k < 9; k++) nd2[C2 - 9 + k] = 3 * LN * LN * 2 + 5 * k + 2;
     /* the dense reference: columns of K^-1 at C's dofs */
-    double *Kinv = calloc((size_t)LD * 42, sizeof(double));
-    long cd[42];
-    for (long k = 0; k < 42; k++) {
-        cd[k] = k < 24 ? nd1[k] : nd2[k - 24];
+    double *Kinv = calloc((size_t)LD * CT, sizeof(double));
+    long cd[CT];
+    for (long k = 0; k < CT; k++) {
+        cd[k] = k < C1 ? nd1[k] : nd2[k - C1];
         Kinv[cd[k] + k * LD] = 1.0;
     }
-    int n = LD, nrhs = 42, info = 0;
+    int n = LD, nrhs = CT, info = 0;
     dpotrf_("L", &n, Kd, &n, &info);
     assert_int_equal(info, 0);
     dpotrs_("L", &n, &nrhs, Kd, &n, Kinv, &n, &info);
     assert_int_equal(info, 0);
     double kmax = 0.0;
-    for (long k = 0; k < (long)LD * 42; k++) kmax = fmax(kmax, fabs(Kinv[k]));
+    for (long k = 0; k < (long)LD * CT; k++) kmax = fmax(kmax, fabs(Kinv[k]));
     const int modes[3][2] = {{1, 1}, {1, 0}, {0, 1}};
     for (int md = 0; md < 3; md++) {
         ffc__bulk *b = NULL;
         assert_int_equal(ffc__bulk_create(LD, nt, Ti, Tj, Tv, 1000, &b, &bad), FFC_OK);
         ffc__bulk_set_columns_mode(b, modes[md][0], modes[md][1]);
-        assert_int_equal(ffc__bulk_columns(b, 3 * LN * LN, rows, 24, nd1, &bad), FFC_OK);
-        assert_int_equal(ffc__bulk_columns(b, 3 * LN * LN, rows, 18, nd2, &bad), FFC_OK);
+        assert_int_equal(ffc__bulk_columns(b, 3 * LN * LN, rows, C1, nd1, &bad), FFC_OK);
+        assert_int_equal(ffc__bulk_columns(b, 3 * LN * LN, rows, C2, nd2, &bad), FFC_OK);
         const long *dof;
         const double *G, *H;
         long ld;
         int super = -1;
         double share = -1.0;
-        assert_int_equal(ffc__bulk_compliance(b, &dof, &G, &ld, &H, &super, &share), 42);
+        assert_int_equal(ffc__bulk_compliance(b, &dof, &G, &ld, &H, &super, &share), CT);
         if (md < 2) assert_int_equal(super, 1);
         if (md == 0) assert_true(share > 0.0 && share < 0.9);   /* the premise: the solves were pruned */
         if (md == 1) assert_true(share == 0.0);
-        long col[42];   /* C's order is the solves' (L's order with pruning): the reference column of each */
-        for (long j = 0; j < 42; j++) {
+        long col[CT];   /* C's order is the solves' (L's order with pruning): the reference column of each */
+        for (long j = 0; j < CT; j++) {
             col[j] = -1;
-            for (long k = 0; k < 42; k++)
+            for (long k = 0; k < CT; k++)
                 if (cd[k] == dof[j]) col[j] = k;
-            assert_true(col[j] >= 0 && (j < 24) == (col[j] < 24));   /* each dof once, the first call's first */
+            assert_true(col[j] >= 0 && (j < C1) == (col[j] < C1));   /* each dof once, the first call's first */
         }
-        for (long j = 0; j < 42; j++) {
-            for (long i = 0; i < 42; i++) assert_close(G[i + j * ld], Kinv[dof[i] + col[j] * LD], 1e-10 * kmax);
+        for (long j = 0; j < CT; j++) {
+            for (long i = 0; i < CT; i++) assert_close(G[i + j * ld], Kinv[dof[i] + col[j] * LD], 1e-10 * kmax);
             for (long r = 0; r < 3 * LN * LN; r++)
                 assert_close(H[r + j * 3 * LN * LN], Kinv[rows[r] + col[j] * LD], 1e-10 * kmax);
         }

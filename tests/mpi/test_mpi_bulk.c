@@ -354,22 +354,23 @@ static void test_shared_lu(void **state)
 /* The replicated CHOLMOD (supernodal, pruned solves) shares the
  * compliance columns out over the ranks: every rank ends with the same G
  * and H (same bits) as one process's computing them all, in the same
- * order; C grown in two calls (24 columns, then 18: the shares are
- * uneven on 4 ranks), some columns outside the rows R.  Tolerance: the
+ * order; C grown in two calls (72 columns, three blocks of solves on one
+ * process; then 30: the shares are uneven on 4 ranks), some columns
+ * outside the rows R.  Tolerance: the
  * same solves of the same factor, 1e-14 of K^-1's largest entry. */
 static void test_replicated_columns(void **state)
 {
     (void)state;
-    enum { LN = 6, LD = 3 * LN * LN * LN, NT = 40 * LN * LN * LN };
+    enum { LN = 6, LD = 3 * LN * LN * LN, NT = 40 * LN * LN * LN, C1 = 72, C2 = 30, CT = C1 + C2, NR = 3 * LN * LN };
     long *Li = malloc(NT * sizeof(long)), *Lj = malloc(NT * sizeof(long)), bad = -1;
     double *Lv = malloc(NT * sizeof(double));
     const long nt = test_lattice(LN, 1e30, Li, Lj, Lv, NULL);
-    long rows[3 * LN * LN], nd1[24], nd2[18];
+    long rows[NR], nd1[C1], nd2[C2];
     const long top = 3 * LN * LN * (LN - 1);
-    for (long k = 0; k < 3 * LN * LN; k++) rows[k] = top + k;
-    for (long k = 0; k < 24; k++) nd1[k] = top + 3 * k;
-    for (long k = 0; k < 9; k++) nd2[k] = top + 3 * k + 1;
-    for (long k = 0; k < 9; k++) nd2[9 + k] = 3 * LN * LN * 2 + 5 * k + 2;
+    for (long k = 0; k < NR; k++) rows[k] = top + k;
+    for (long k = 0; k < C1; k++) nd1[k] = top + k;
+    for (long k = 0; k < C2 - 9; k++) nd2[k] = top + C1 + k;
+    for (long k = 0; k < 9; k++) nd2[C2 - 9 + k] = 3 * LN * LN * 2 + 5 * k + 2;
     int fc, ranks;
     ffc_mpi_world(NULL, &ranks, &fc);
     ffc__bulk *b[2] = {NULL, NULL};
@@ -377,8 +378,8 @@ static void test_replicated_columns(void **state)
         assert_int_equal(ffc__bulk_create(LD, nt, Li, Lj, Lv, 1000, &b[k], &bad), FFC_OK);
         if (k == 1) assert_int_equal(ffc__bulk_set_replicated(b[k], fc), FFC_OK);
         ffc__bulk_set_columns_mode(b[k], 1, 1);
-        assert_int_equal(ffc__bulk_columns(b[k], 3 * LN * LN, rows, 24, nd1, &bad), FFC_OK);
-        assert_int_equal(ffc__bulk_columns(b[k], 3 * LN * LN, rows, 18, nd2, &bad), FFC_OK);
+        assert_int_equal(ffc__bulk_columns(b[k], NR, rows, C1, nd1, &bad), FFC_OK);
+        assert_int_equal(ffc__bulk_columns(b[k], NR, rows, C2, nd2, &bad), FFC_OK);
     }
     const long *dof[2];
     const double *G[2], *H[2];
@@ -386,28 +387,32 @@ static void test_replicated_columns(void **state)
     int super[2];
     double share[2];
     for (int k = 0; k < 2; k++)
-        assert_int_equal(ffc__bulk_compliance(b[k], &dof[k], &G[k], &ld[k], &H[k], &super[k], &share[k]), 42);
+        assert_int_equal(ffc__bulk_compliance(b[k], &dof[k], &G[k], &ld[k], &H[k], &super[k], &share[k]), CT);
     assert_true(super[0] && super[1] && share[1] > 0.0 && share[1] < 0.9);   /* pruned */
     ffc_solve_info in;
     ffc__bulk_info(b[1], &in);
     assert_int_equal(in.ranks, ranks);
-    assert_int_equal(in.columns, 42);
-    if (ranks > 1) assert_true(in.backsolves < 42);   /* each rank solved its share only */
+    assert_int_equal(in.columns, CT);
+    if (ranks > 1) assert_true(in.backsolves < CT);   /* each rank solved its share only */
     double gmax = 0.0, d = 0.0;
-    for (long j = 0; j < 42; j++) {
+    for (long j = 0; j < CT; j++) {
         assert_int_equal(dof[1][j], dof[0][j]);
-        for (long i = 0; i < 42; i++) {
+        for (long i = 0; i < CT; i++) {
             gmax = fmax(gmax, fabs(G[0][i + j * ld[0]]));
             d = fmax(d, fabs(G[1][i + j * ld[1]] - G[0][i + j * ld[0]]));
         }
-        for (long r = 0; r < 3 * LN * LN; r++) d = fmax(d, fabs(H[1][r + j * 3 * LN * LN] - H[0][r + j * 3 * LN * LN]));
+        for (long r = 0; r < NR; r++) d = fmax(d, fabs(H[1][r + j * NR] - H[0][r + j * NR]));
     }
     assert_true(gmax > 0.0);
     assert_close(d, 0.0, 1e-14 * gmax);
-    double *g = malloc(42 * 42 * sizeof(double));
-    for (long j = 0; j < 42; j++)
-        for (long i = 0; i < 42; i++) g[i + 42 * j] = G[1][i + j * ld[1]];
-    assert_close(rank_spread(42 * 42, g), 0.0, 0.0);
+    /* every rank the same bits: G, H and C's dofs */
+    double *g = malloc((CT * CT + NR * CT + CT) * sizeof(double));
+    for (long j = 0; j < CT; j++) {
+        for (long i = 0; i < CT; i++) g[i + CT * j] = G[1][i + j * ld[1]];
+        for (long r = 0; r < NR; r++) g[CT * CT + r + NR * j] = H[1][r + j * NR];
+        g[CT * CT + NR * CT + j] = (double)dof[1][j];
+    }
+    assert_close(rank_spread(CT * CT + NR * CT + CT, g), 0.0, 0.0);
     free(g);
     for (int k = 0; k < 2; k++) ffc__bulk_free(b[k]);
     free(Li); free(Lj); free(Lv);
