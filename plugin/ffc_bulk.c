@@ -120,6 +120,16 @@ static int agree(const ffc__bulk *b, int st)
     return ok ? FFC_OK : st ? st : FFC_ERR_MEMORY;
 }
 
+/* drops the pruned solves' tree and work (made again with the next factor) */
+static void prune_free(ffc__bulk *b)
+{
+    free(b->ipm); free(b->sn); free(b->spar); free(b->smark); free(b->sw);
+    b->ipm = b->sn = b->spar = NULL;
+    b->smark = NULL;
+    b->sw = NULL;
+    b->swcap = 0;
+}
+
 static void bulk_free_factor(ffc__bulk *b)
 {
     if (!b->started) return;
@@ -127,11 +137,7 @@ static void bulk_free_factor(ffc__bulk *b)
     for (size_t k = 0; k < sizeof d / sizeof *d; k++)
         if (*d[k]) cholmod_free_dense(d[k], &b->cc);
     if (b->L) cholmod_free_factor(&b->L, &b->cc);
-    free(b->ipm); free(b->sn); free(b->spar); free(b->smark); free(b->sw);
-    b->ipm = b->sn = b->spar = NULL;
-    b->smark = NULL;
-    b->sw = NULL;
-    b->swcap = 0;
+    prune_free(b);
     b->factored = 0;
     b->m = 0;
 }
@@ -242,6 +248,20 @@ int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const do
     return FFC_OK;
 }
 
+/* the condensed Newton's dense LU shared over the ranks of fcomm when make
+ * is 1 (ScaLAPACK), or on no rank when any failed to make it (without it,
+ * dense LUs on every rank); the kept LU dropped */
+static void shared_lu(ffc__bulk *b, int fcomm, int make)
+{
+    ffc__pdense_free(b->pd);
+    b->pd = NULL;
+    b->kdist = 0;
+    b->ka = 0;
+    if (!make) return;
+    if (ffc__pdense_create(fcomm, &b->pd)) b->pd = NULL;
+    if (!ffc__mpi_min(fcomm, b->pd != NULL)) { ffc__pdense_free(b->pd); b->pd = NULL; }
+}
+
 int ffc__bulk_set_mumps(ffc__bulk *b, int fcomm)
 {
     if (!b) return FFC_ERR_NULL;
@@ -252,12 +272,7 @@ int ffc__bulk_set_mumps(ffc__bulk *b, int fcomm)
     ffc__mumps_free(b->mp);
     b->mp = m;
     b->rsize = 1;
-    ffc__pdense_free(b->pd);
-    b->pd = NULL;
-    b->kdist = 0;
-    b->ka = 0;
-    if (ffc__pdense_create(fcomm, &b->pd)) b->pd = NULL;   /* (without it, dense LUs on every rank) */
-    if (!ffc__mumps_agree(b->mp, b->pd != NULL)) { ffc__pdense_free(b->pd); b->pd = NULL; }   /* (on every rank alike) */
+    shared_lu(b, fcomm, 1);
     return FFC_OK;
 }
 
@@ -277,12 +292,7 @@ int ffc__bulk_set_replicated(ffc__bulk *b, int fcomm)
     b->rcomm = fcomm;
     b->rrank = rank;
     b->rsize = size;
-    ffc__pdense_free(b->pd);
-    b->pd = NULL;
-    b->kdist = 0;
-    b->ka = 0;
-    if (size > 1 && ffc__pdense_create(fcomm, &b->pd)) b->pd = NULL;   /* (the condensed Newton's dense LUs) */
-    if (size > 1 && !ffc__mpi_min(fcomm, b->pd != NULL)) { ffc__pdense_free(b->pd); b->pd = NULL; }
+    shared_lu(b, fcomm, size > 1);
     return FFC_OK;
 }
 
@@ -332,7 +342,7 @@ static int backsolve(ffc__bulk *b, const double rhs[], double y[])
         if (st) return st;
     } else {
         const int ok = cholmod_solve2(CHOLMOD_A, b->L, b->B, NULL, &b->X, NULL, &b->Y, &b->E, &b->cc);
-        const int st = b->rsize > 1 ? agree(b, ok ? FFC_OK : FFC_ERR_MEMORY) : ok ? FFC_OK : FFC_ERR_MEMORY;
+        const int st = agree(b, ok ? FFC_OK : FFC_ERR_MEMORY);   /* (CHOLMOD on every rank) */
         if (st) return st;
     }
     memcpy(y, b->mp ? b->B->x : b->X->x, (size_t)b->n * sizeof(double));
@@ -446,11 +456,7 @@ static int prune_tree(ffc__bulk *b)
     b->swcap = (wrow > 0 ? wrow : 1) * BLOCK;
     b->sw = malloc((size_t)b->swcap * sizeof(double));
     if (!b->ipm || !b->sn || !b->spar || !b->smark || !b->sw) {
-        free(b->ipm); free(b->sn); free(b->spar); free(b->smark); free(b->sw);
-        b->ipm = b->sn = b->spar = NULL;
-        b->smark = NULL;
-        b->sw = NULL;
-        b->swcap = 0;
+        prune_free(b);
         return FFC_ERR_MEMORY;
     }
     for (long i = 0; i < n; i++) b->ipm[perm[i]] = (int)i;
