@@ -7,11 +7,12 @@
 // is meshed with size hs, the die is structured: arc intervals of about hd,
 // one element through the thickness, layers of about hd along y.
 //   gmsh -3 -format msh2 -setnumber hs 0.5 ironing.geo
+// (-setnumber ext e: the slab [-e, 9 + e] x [0,2] x [0,3], the die where it was)
 SetFactory("OpenCASCADE");
-DefineConstant[ hs = 0.5, hd = 0.25 ];
+DefineConstant[ hs = 0.5, hd = 0.25, ext = 0 ];
 Mesh.MshFileVersion = 2.2;
 e = 1e-6;
-Box(1) = {0, 0, 0, 9, 2, 3};
+Box(1) = {-ext, 0, 0, 9 + 2 * ext, 2, 3};   // ext > 0: the slab lengthened at both ends
 
 cx = 2.5; cz = 6; R = 3; t = 0.2; th = 75 * Pi / 180; y0 = -0.6; w = 2.6;
 Point(101) = {cx, y0, cz};
