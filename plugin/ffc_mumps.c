@@ -93,9 +93,7 @@ static int share(ffc__mumps *m, long nl)
     m->ri = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
     m->rj = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
     m->rv = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(double));
-    int ok = m->ri && m->rj && m->rv, all = 0;
-    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, m->comm);
-    if (!all) return FFC_ERR_MEMORY;
+    if (!ffc__mumps_agree(m, m->ri && m->rj && m->rv)) return FFC_ERR_MEMORY;
     m->nloc = nl;
     DMUMPS_STRUC_C *id = &m->id;
     id->ICNTL(1) = -1; id->ICNTL(2) = -1; id->ICNTL(3) = -1; id->ICNTL(4) = 0;   /* kernels never print */
@@ -184,10 +182,7 @@ static int by_key(const void *a, const void *b)
 
 int ffc__mumps_agree(ffc__mumps *m, int ok)
 {
-    int all = 0;
-    if (!m) return ok;
-    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, m->comm);
-    return all;
+    return m ? ffc__mpi_min((int)m->id.comm_fortran, ok) : ok;
 }
 
 int ffc__mumps_inverse(ffc__mumps *m, long ncols, const long cols[], long nrows, const long rows[], double X[])
