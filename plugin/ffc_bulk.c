@@ -371,7 +371,12 @@ static int factorize(ffc__bulk *b, long nnew, const long nd[])
     for (long t = 0; t < b->nt; t++) nlow += b->Ti[t] >= b->Tj[t] && !b->big[b->Ti[t]] && !b->big[b->Tj[t]];
     cholmod_triplet *T = cholmod_allocate_triplet((size_t)b->n, (size_t)b->n, (size_t)(nlow + b->n), -1,
                                                   CHOLMOD_REAL, &b->cc);
-    if (!T) return FFC_ERR_MEMORY;
+    int st = agree(b, T ? FFC_OK : FFC_ERR_MEMORY);   /* (a shared factorization: every rank enters it, or none) */
+    if (st) {
+        if (T) cholmod_free_triplet(&T, &b->cc);
+        for (long k = 0; k < nnew; k++) b->sh[nd[k]] = 0.0;
+        return st;
+    }
     int *ti = T->i, *tj = T->j;
     double *tv = T->x;
     long c = 0;
@@ -382,7 +387,6 @@ static int factorize(ffc__bulk *b, long nnew, const long nd[])
     for (long i = 0; i < b->n; i++)
         if (b->sh[i] != 0.0 || b->big[i]) { ti[c] = tj[c] = (int)i; tv[c] = b->big[i] ? b->kfree : b->sh[i]; c++; }
     T->nnz = (size_t)c;
-    int st = FFC_OK;
     cholmod_sparse *A = NULL;
     if (b->mp) { /* MUMPS: the same lower triangle, shared out over the ranks */
         st = ffc__mumps_factor(b->mp, b->n, c, ti, tj, tv);
@@ -406,12 +410,12 @@ static int factorize(ffc__bulk *b, long nnew, const long nd[])
         }
     }
     if (A) cholmod_free_sparse(&A, &b->cc);
-    if (b->rsize > 1) st = agree(b, st);   /* (CHOLMOD on every rank: one rank short of memory) */
     if (!st) {
         b->B = cholmod_zeros((size_t)b->n, 1, CHOLMOD_REAL, &b->cc);
         b->Bb = cholmod_zeros((size_t)b->n, BLOCK, CHOLMOD_REAL, &b->cc);
         if (!b->B || !b->Bb) st = FFC_ERR_MEMORY;
     }
+    st = agree(b, st);   /* (a shared factorization: one rank short of memory is every rank's failure) */
     if (st) {
         bulk_free_factor(b);
         for (long k = 0; k < nnew; k++) b->sh[nd[k]] = 0.0;
