@@ -890,6 +890,8 @@ typedef struct {
     double residual;     /* last solve: the free rows' residual / (|b_free| + max free
                             diagonal |x_free|), or a Dirichlet row's residual / (its
                             diagonal |x|_inf), the larger (1) */
+    double t_factor;     /* wall time of the factorizations (seconds) */
+    double t_columns;    /* wall time of the compliance columns (seconds) */
 } ffc_solve_info;
 
 /* Sets K from its triplets (Ti, Tj, Tv)[nt] (both triangles; duplicates

@@ -31,7 +31,9 @@ void dgemm_(const char *ta, const char *tb, const int *m, const int *n, const in
             const double *a, const int *lda, const double *b, const int *ldb, const double *beta, double *c,
             const int *ldc);
 
-enum { BLOCK = 32 };   /* compliance columns per block back-solve */
+enum { BLOCK = 64 };   /* compliance columns per block back-solve */
+enum { REFRESH = 8 };  /* the condensed Newton recomputes y = d0_C + G z and H z from z every this many
+                          iterations (between, it adds the steps G dz, H dz) */
 enum { PDENSE_MIN = 200 }; /* on several ranks, the condensed Newton's dense LU of this order and more is
                               shared over them (ScaLAPACK); a smaller one is factorized on every rank */
 
@@ -357,7 +359,7 @@ static int backsolve(ffc__bulk *b, const double rhs[], double y[])
  * values of those dofs are moved to the right-hand side: the same solution
  * as the tgv rows' to within 1/tgv, and a factor whose pivots show a
  * singular K: its estimated reciprocal condition below 1e-12 is refused) */
-static int factorize(ffc__bulk *b, long nnew, const long nd[])
+static int factorize_timed(ffc__bulk *b, long nnew, const long nd[])
 {
     if (!b->started) {
         cholmod_start(&b->cc);
@@ -425,6 +427,22 @@ static int factorize(ffc__bulk *b, long nnew, const long nd[])
     b->info.factorizations++;
     b->info.shift = nnew ? b->kfree : 0.0;
     return FFC_OK;
+}
+
+static double seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* factorize_timed, its wall time added to info.t_factor */
+static int factorize(ffc__bulk *b, long nnew, const long nd[])
+{
+    const double t0 = seconds();
+    const int st = factorize_timed(b, nnew, nd);
+    b->info.t_factor += seconds() - t0;
+    return st;
 }
 
 /* The first factorization: K alone; when K is singular (a body that only
@@ -587,7 +605,7 @@ static int columns_on_rows(ffc__bulk *b, long nc, const long d[], const unsigned
 enum { INV_ENTRIES = 1 << 21 };   /* values per piece (MUMPS's transient work: about 20 bytes each, 40 MB;
                                      fewer columns per solve lost its pruning's gain) */
 
-static int add_columns(ffc__bulk *b, long nnew, const long nd[])
+static int add_columns_timed(ffc__bulk *b, long nnew, const long nd[])
 {
     int st = agree(b, grow(b, b->m + nnew));
     if (st) return st;
@@ -651,6 +669,15 @@ static int add_columns(ffc__bulk *b, long nnew, const long nd[])
     if (st) return st;
     b->info.columns += nnew;
     return FFC_OK;
+}
+
+/* add_columns_timed, its wall time added to info.t_columns */
+static int add_columns(ffc__bulk *b, long nnew, const long nd[])
+{
+    const double t0 = seconds();
+    const int st = add_columns_timed(b, nnew, nd);
+    b->info.t_columns += seconds() - t0;
+    return st;
 }
 
 /* r = b - (K + Kc) x */
@@ -1315,7 +1342,7 @@ static double list_dot(const long start[], const long idx[], const double val[],
 }
 
 static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy[], double dz[], double q[],
-                            long *np, long *bad)
+                            double gdz[], long *np, long *bad)
 {
     const long m = b->m, ld = b->ld;
     for (long k = 0; k < m; k++) b->pos[b->dof[k]] = k;
@@ -1397,6 +1424,14 @@ static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy
     for (long k = 0; k < pt; k++) vd[k] = list_dot(start, idx, val, 2 * k + 1, dy);
     for (long k = 0; k < pt; k++)
         for (long e = start[2 * k]; e < start[2 * k + 1]; e++) dz[idx[e]] -= val[e] * vd[k];
+    /* G dz = -q - (G U) (V^T dy), from the products at hand (G U is m x p,
+     * G m x m) */
+    for (long k = 0; k < m; k++) gdz[k] = -q[k];
+    if (pt > 0) {
+        const int pi = (int)pt;
+        const double mone = -1.0;
+        dgemv_("N", &mi, &pi, &mone, GU, &mi, vd, &one, &d1, gdz, &one);
+    }
     return FFC_OK;
 }
 
@@ -1583,15 +1618,15 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
         }
         long na = 0;
         starting = 0;
-        st = tmode == FFC_TANGENT_RANKED ? direction_ranked(b, nt, rho, dy, dz, q, &na, bad)
+        st = tmode == FFC_TANGENT_RANKED ? direction_ranked(b, nt, rho, dy, dz, q, gdz, &na, bad)
                        : direction(b, nt, rho, dy, dz, ap, ad, q, tt, ss, &na, bad);
         if (st) break;
         if (na > info->support) info->support = na;
         if (fresh) nap = nal;
         nal = na;
         /* the step of y that the step of z makes: G dz (= dy to the accuracy
-         * of the dense solve) */
-        if (m) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, dz, &one, &d0s, gdz, &one);
+         * of the dense solve; the ranked direction made it) */
+        if (m && tmode != FFC_TANGENT_RANKED) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, dz, &one, &d0s, gdz, &one);
         double g0 = dot(m, rho, gdz);
         if (!(g0 < 0) && tmode == FFC_TANGENT_CONSISTENT) {
             /* the consistent tangent is indefinite here: the material one's direction */
@@ -1661,9 +1696,16 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
             continue;
         }
         info->iters++;
+        /* z += a dz, and y = d0_C + G z, hz = H z by the same steps (G dz and
+         * H dz are at hand; recomputed from z every REFRESH iterations) */
         for (long k = 0; k < m; k++) z[k] += a * dz[k];
-        Y_OF_Z();
-        HZ();
+        if (info->iters % REFRESH == 0) {
+            Y_OF_Z();
+            HZ();
+        } else {
+            for (long k = 0; k < m; k++) y[k] += a * gdz[k];
+            for (long k = 0; k < nrb; k++) hz[k] += a * hdz[k];
+        }
         for (long k = 0; k < nrb; k++) hdz[k] = 0.0;
         W_AT(0.0, y);
         double dn = 0.0, yn = 0.0;

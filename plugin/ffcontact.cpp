@@ -1641,7 +1641,9 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "ranks") return in.ranks;
     if (k == "factorMB") return in.factor_mb;
     if (k == "factorMBmax") return in.factor_mb_max;
-    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax");
+    if (k == "factorTime") return in.t_factor;
+    if (k == "columnsTime") return in.t_columns;
+    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime");
     return 0;
 }
 
