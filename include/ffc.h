@@ -892,6 +892,7 @@ typedef struct {
                             diagonal |x|_inf), the larger (1) */
     double t_factor;     /* wall time of the factorizations (seconds) */
     double t_columns;    /* wall time of the compliance columns (seconds) */
+    long reused;         /* condensed Newton calls whose first solve was the last call's closing one (count) */
 } ffc_solve_info;
 
 /* Sets K from its triplets (Ti, Tj, Tv)[nt] (both triangles; duplicates

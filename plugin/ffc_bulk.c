@@ -110,6 +110,10 @@ struct ffc__bulk {
     double *sw;                /* [swcap] work: a supernode's rows below its diagonal block x BLOCK */
     double pshare;             /* the share of L's entries the last pruned backward solves visited */
     long swcap;
+    /* the last condensed Newton's closing solve, K'^-1 bprev = xprev: the next call's first solve
+     * when its right-hand side is the same (an augmentation of the same load step) */
+    double *bprev, *xprev;     /* [n] (NULL until the first closing solve) */
+    int prev;                  /* 1: they hold for the present factor */
 };
 
 /* Every rank of a shared factorization (MUMPS, or CHOLMOD on every rank)
@@ -140,6 +144,7 @@ static void bulk_free_factor(ffc__bulk *b)
         if (*d[k]) cholmod_free_dense(d[k], &b->cc);
     if (b->L) cholmod_free_factor(&b->L, &b->cc);
     prune_free(b);
+    b->prev = 0;
     b->factored = 0;
     b->m = 0;
 }
@@ -156,7 +161,7 @@ void ffc__bulk_free(ffc__bulk *b)
     free(b->rv); free(b->ri);
     free(b->xc); free(b->w); free(b->r); free(b->dx); free(b->t); free(b->kv);
     free(b->Gc); free(b->ti); free(b->tj); free(b->tv); free(b->Mw); free(b->Gw);
-    free(b->rows); free(b->rpos); free(b->H);
+    free(b->rows); free(b->rpos); free(b->H); free(b->bprev); free(b->xprev);
     free(b->kdof); free(b->klu); free(b->kpiv); free(b->gv); free(b->rcount);
     free(b);
 }
@@ -439,6 +444,7 @@ static double seconds(void)
 /* factorize_timed, its wall time added to info.t_factor */
 static int factorize(ffc__bulk *b, long nnew, const long nd[])
 {
+    b->prev = 0;
     const double t0 = seconds();
     const int st = factorize_timed(b, nnew, nd);
     b->info.t_factor += seconds() - t0;
@@ -1435,6 +1441,41 @@ static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy
     return FFC_OK;
 }
 
+/* Formulation (the closing solve kept).  A call ends at u' = u + d0 - x,
+ * x = K'^-1 (-P_C^T z), and K d0 = b' = f - K u on the free rows, so the
+ * next call's b'' = f - K u' = -P_C^T z when the load, the Dirichlet
+ * values and K' are the same (an augmentation: only the multipliers
+ * changed, and they are not in b'), and its d0 is x.  Taken when b''
+ * (lifted) equals that right-hand side to REUSE_TOL of its largest entry
+ * (what differs is the round-off of the residual f - K u' that the caller
+ * formed, and of the two solves); every rank decides alike. */
+enum { REUSE_TOL_EXP = 10 };   /* REUSE_TOL = 10^-REUSE_TOL_EXP */
+static int same_rhs(const ffc__bulk *b, const double rhs[])
+{
+    int ok = b->prev;
+    if (ok) {
+        double e = 0.0, s = 0.0;
+        for (long i = 0; i < b->n; i++) {
+            e = fmax(e, fabs(rhs[i] - b->bprev[i]));
+            s = fmax(s, fabs(b->bprev[i]));
+        }
+        ok = s > 0.0 && e <= pow(10.0, -REUSE_TOL_EXP) * s;
+    }
+    return b->mp ? ffc__mumps_agree(b->mp, ok) : b->rsize > 1 ? ffc__mpi_min(b->rcomm, ok) : ok;
+}
+
+/* keeps the closing solve K'^-1 rhs = x (nothing kept when short of memory) */
+static void keep_closing(ffc__bulk *b, const double rhs[], const double x[])
+{
+    const size_t bytes = (size_t)b->n * sizeof(double);
+    if (!b->bprev) b->bprev = malloc(bytes);
+    if (!b->xprev) b->xprev = malloc(bytes);
+    b->prev = b->bprev && b->xprev;
+    if (!b->prev) return;
+    memcpy(b->bprev, rhs, bytes);
+    memcpy(b->xprev, x, bytes);
+}
+
 int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const long cand[], ffc__contact_fn fn,
                      void *ctx, const double r[], double u[], const ffc_newton_opts *o, ffc_newton_info *info,
                      long *bad)
@@ -1479,9 +1520,14 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
     if (!st) st = add_to_c(b, nnew, b->nd, cap, bad);
     if (!st) st = factor_g(b);
     if (st) return st;
-    /* d0 = K^-1 b' with the Dirichlet values moved to the right-hand side */
+    /* d0 = K^-1 b' with the Dirichlet values moved to the right-hand side
+     * (or the last call's closing solve, when b' is its right-hand side) */
     lift_dirichlet(b, 0, NULL, NULL, NULL, w, rhs);
-    st = backsolve(b, rhs, d0);
+    if (same_rhs(b, rhs)) {
+        memcpy(d0, b->xprev, (size_t)n * sizeof(double));
+        b->info.reused++;
+    } else
+        st = backsolve(b, rhs, d0);
     if (st) return st;
     long m = b->m;
     /* C grows up to mm dofs.  m-vectors: y = d_C, z = G^-1 (y - d0_C) (the
@@ -1731,6 +1777,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
         st = backsolve(b, rhs, b->r);
         if (!st)
             for (long i = 0; i < n; i++) u[i] += d0[i] - b->r[i];
+        if (!st) keep_closing(b, rhs, b->r);
     }
     free(buf);
     free(ibuf);

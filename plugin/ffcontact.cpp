@@ -1643,7 +1643,8 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "factorMBmax") return in.factor_mb_max;
     if (k == "factorTime") return in.t_factor;
     if (k == "columnsTime") return in.t_columns;
-    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime");
+    if (k == "reused") return in.reused;
+    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, reused");
     return 0;
 }
 

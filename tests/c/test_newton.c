@@ -281,6 +281,47 @@ static void test_growth(void **state)
     ffc_scene_free(s);
 }
 
+/* An augmentation of the same load: the second call's first solve is the
+ * first call's closing one (b' = -P_C^T z to round-off), and its answer
+ * is the full Newton's at the augmented multipliers; a changed load is
+ * solved afresh. */
+static void test_closing_reused(void **state)
+{
+    (void)state;
+    long Ti[1024], Tj[1024], nt = 0, bad = -1;
+    double Tv[1024], Kd[N * N], f[N], uf[N], uc[N] = {0}, r[N];
+    ffc_scene *s = make(0.0, KG, &nt, Ti, Tj, Tv, Kd);
+    loads(0.0, 0.0, f);
+    ffc_newton_opts o = ffc_newton_defaults();
+    o.ftol = 1e-12;
+    ffc_newton_info in;
+    ffc_solve_info si;
+    residual(s, Kd, f, uc, r, NULL);
+    assert_int_equal(ffc_scene_newton(s, r, uc, &o, &in, &bad), FFC_OK);
+    ffc_scene_solve_info(s, &si);
+    assert_int_equal(si.reused, 0);
+    assert_int_equal(ffc_scene_augment(s, uc, &bad), FFC_OK);
+    memcpy(uf, uc, sizeof uf);
+    full_newton(s, Kd, f, uf);
+    residual(s, Kd, f, uc, r, NULL);
+    assert_int_equal(ffc_scene_newton(s, r, uc, &o, &in, &bad), FFC_OK);
+    ffc_scene_solve_info(s, &si);
+    assert_int_equal(si.reused, 1);
+    check_same(uc, uf);
+    residual(s, Kd, f, uc, r, NULL);
+    assert_true(free_norm(r) <= 2 * o.ftol);
+    /* a load: b' is no longer the closing solve's right-hand side */
+    loads(0.0, 0.01, f);
+    memcpy(uf, uc, sizeof uf);
+    full_newton(s, Kd, f, uf);
+    residual(s, Kd, f, uc, r, NULL);
+    assert_int_equal(ffc_scene_newton(s, r, uc, &o, &in, &bad), FFC_OK);
+    ffc_scene_solve_info(s, &si);
+    assert_int_equal(si.reused, 1);
+    check_same(uc, uf);
+    ffc_scene_free(s);
+}
+
 /* The contact closes during the call: the slave square starts 2e-3 above
  * the master, with no contact force, and a load presses it down by about
  * 1e-2.  C starts empty and grows as the force reaches dofs (at the
@@ -629,6 +670,7 @@ int main(void)
         cmocka_unit_test(test_frictionless),   cmocka_unit_test(test_stick),
         cmocka_unit_test(test_slip),           cmocka_unit_test(test_held_by_contact),
         cmocka_unit_test(test_quadratic),      cmocka_unit_test(test_growth),
+        cmocka_unit_test(test_closing_reused),
         cmocka_unit_test(test_contact_closes), cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_nts_saddle),     cmocka_unit_test(test_nts_saddle_bad_input),
         cmocka_unit_test(test_not_positive_definite), cmocka_unit_test(test_ranked),
