@@ -1445,7 +1445,9 @@ static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy
  * x = K'^-1 (-P_C^T z), and K d0 = b' = f - K u on the free rows, so the
  * next call's b'' = f - K u' = -P_C^T z when the load, the Dirichlet
  * values and K' are the same (an augmentation: only the multipliers
- * changed, and they are not in b'), and its d0 is x.  Taken when b''
+ * changed, and they are not in b'), and its d0 is x (with a shift S, a
+ * body that only contact holds, b'' has S (d0 - x) more and is solved
+ * afresh).  Taken when b''
  * (lifted) equals that right-hand side to REUSE_TOL of its largest entry
  * (what differs is the round-off of the residual f - K u' that the caller
  * formed, and of the two solves); every rank decides alike. */
