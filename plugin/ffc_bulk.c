@@ -1447,21 +1447,24 @@ static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy
  * values and K' are the same (an augmentation: only the multipliers
  * changed, and they are not in b'), and its d0 is x (with a shift S, a
  * body that only contact holds, b'' has S (d0 - x) more and is solved
- * afresh).  Taken when b''
+ * afresh, unless S (d0 - x) is as small as below).  Taken when b''
  * (lifted) equals that right-hand side to REUSE_TOL of its largest entry
- * (what differs is the round-off of the residual f - K u' that the caller
- * formed, and of the two solves); every rank decides alike. */
+ * and to the force tolerance tol of the call (what differs is the
+ * round-off of the residual f - K u' that the caller formed, and of the
+ * two solves; the difference is left in the free rows' residual of the
+ * returned state, below tol); every rank decides alike. */
 enum { REUSE_TOL_EXP = 10 };   /* REUSE_TOL = 10^-REUSE_TOL_EXP */
-static int same_rhs(const ffc__bulk *b, const double rhs[])
+static int same_rhs(const ffc__bulk *b, const double rhs[], double tol)
 {
     int ok = b->prev;
     if (ok) {
         double e = 0.0, s = 0.0;
         for (long i = 0; i < b->n; i++) {
-            e = fmax(e, fabs(rhs[i] - b->bprev[i]));
+            const double d = fabs(rhs[i] - b->bprev[i]);
+            if (!(d <= e)) e = d;   /* (a NaN stays: no reuse, and the solve reports it) */
             s = fmax(s, fabs(b->bprev[i]));
         }
-        ok = s > 0.0 && e <= pow(10.0, -REUSE_TOL_EXP) * s;
+        ok = s > 0.0 && e <= pow(10.0, -REUSE_TOL_EXP) * s && e <= tol;
     }
     return b->mp ? ffc__mumps_agree(b->mp, ok) : b->rsize > 1 ? ffc__mpi_min(b->rcomm, ok) : ok;
 }
@@ -1525,7 +1528,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
     /* d0 = K^-1 b' with the Dirichlet values moved to the right-hand side
      * (or the last call's closing solve, when b' is its right-hand side) */
     lift_dirichlet(b, 0, NULL, NULL, NULL, w, rhs);
-    if (same_rhs(b, rhs)) {
+    if (same_rhs(b, rhs, fmax(o->ftol, o->frel * fm))) {
         memcpy(d0, b->xprev, (size_t)n * sizeof(double));
         b->info.reused++;
     } else
@@ -1533,8 +1536,9 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
     if (st) return st;
     long m = b->m;
     /* C grows up to mm dofs.  m-vectors: y = d_C, z = G^-1 (y - d0_C) (the
-     * reaction that holds C at y: the primary unknown, y = d0_C + G z
-     * recomputed from it, so that y and z never drift apart), rho, dy, dz,
+     * reaction that holds C at y: the primary unknown; y = d0_C + G z
+     * advanced by the same steps and recomputed from z every REFRESH
+     * iterations, so that the two drift apart by round-off only), rho, dy, dz,
      * gdz = G dz, Fp, rt, q, t, s, d0_C; ap, ad; on the rows: hz = H z,
      * hdz = H dz (the displacement of the rows outside C: u + d0 + H z) */
     const long nrb = b->nr;
