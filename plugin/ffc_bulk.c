@@ -116,14 +116,18 @@ struct ffc__bulk {
     int prev;                  /* 1: they hold for the present factor */
 };
 
-/* Every rank of a shared factorization (MUMPS, or CHOLMOD on every rank)
- * takes the same branch: st, or FFC_ERR_MEMORY where another rank failed
- * (a collective call; st itself with one process). */
+/* 1 when ok holds on every rank of a shared factorization (MUMPS, or
+ * CHOLMOD on every rank; a collective call), ok itself with one process */
+static int all_ranks(const ffc__bulk *b, int ok)
+{
+    return b->mp ? ffc__mumps_agree(b->mp, ok) : b->rsize > 1 ? ffc__mpi_min(b->rcomm, ok) : ok;
+}
+
+/* Every rank of a shared factorization takes the same branch: st, or
+ * FFC_ERR_MEMORY where another rank failed (st itself with one process). */
 static int agree(const ffc__bulk *b, int st)
 {
-    const int ok = b->mp ? ffc__mumps_agree(b->mp, st == FFC_OK) : b->rsize > 1 ? ffc__mpi_min(b->rcomm, st == FFC_OK)
-                                                                              : st == FFC_OK;
-    return ok ? FFC_OK : st ? st : FFC_ERR_MEMORY;
+    return all_ranks(b, st == FFC_OK) ? FFC_OK : st ? st : FFC_ERR_MEMORY;
 }
 
 /* drops the pruned solves' tree and work (made again with the next factor) */
@@ -1042,11 +1046,9 @@ static int contact_eval(ffc__bulk *b, ffc__contact_fn fn, void *ctx, const doubl
             b->tcap = need;
         }
         memset(b->r, 0, (size_t)b->n * sizeof(double));
-        struct timespec t0, t1;
-        clock_gettime(CLOCK_MONOTONIC, &t0);
+        const double t0 = seconds();
         int st = fn(ctx, w, tangent, b->r, tangent ? b->tcap : 0, b->ti, b->tj, b->tv, nt, fmag, bad);
-        clock_gettime(CLOCK_MONOTONIC, &t1);
-        if (b->t_eval) *b->t_eval += (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+        if (b->t_eval) *b->t_eval += seconds() - t0;
         if (st != FFC_ERR_CAPACITY || !tangent) return st;
         need = *nt + *nt / 2 + 64;
     }
@@ -1453,7 +1455,7 @@ static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy
  * round-off of the residual f - K u' that the caller formed, and of the
  * two solves; the difference is left in the free rows' residual of the
  * returned state, below tol); every rank decides alike. */
-enum { REUSE_TOL_EXP = 10 };   /* REUSE_TOL = 10^-REUSE_TOL_EXP */
+#define REUSE_TOL 1e-10
 static int same_rhs(const ffc__bulk *b, const double rhs[], double tol)
 {
     int ok = b->prev;
@@ -1464,9 +1466,9 @@ static int same_rhs(const ffc__bulk *b, const double rhs[], double tol)
             if (!(d <= e)) e = d;   /* (a NaN stays: no reuse, and the solve reports it) */
             s = fmax(s, fabs(b->bprev[i]));
         }
-        ok = s > 0.0 && e <= pow(10.0, -REUSE_TOL_EXP) * s && e <= tol;
+        ok = s > 0.0 && e <= REUSE_TOL * s && e <= tol;
     }
-    return b->mp ? ffc__mumps_agree(b->mp, ok) : b->rsize > 1 ? ffc__mpi_min(b->rcomm, ok) : ok;
+    return all_ranks(b, ok);
 }
 
 /* keeps the closing solve K'^-1 rhs = x (nothing kept when short of memory) */
