@@ -211,4 +211,18 @@ static inline long test_lattice(int ln, double tgv, long Ti[], long Tj[], double
     return t;
 }
 
+/* The lattice's contact sets of the compliance tests: the rows R = the
+ * dofs of its top plane (3 ln^2), C grown in two calls: nd1 = R's first
+ * 72 dofs (more than one block of solves), then nd2 = 21 more of R and 9
+ * interior dofs outside R (ln >= 6). */
+enum { LATTICE_C1 = 72, LATTICE_C2 = 30 };
+static inline void test_lattice_sets(int ln, long rows[], long nd1[LATTICE_C1], long nd2[LATTICE_C2])
+{
+    const long top = 3L * ln * ln * (ln - 1);
+    for (long k = 0; k < 3L * ln * ln; k++) rows[k] = top + k;
+    for (long k = 0; k < LATTICE_C1; k++) nd1[k] = top + k;
+    for (long k = 0; k < LATTICE_C2 - 9; k++) nd2[k] = top + LATTICE_C1 + k;
+    for (long k = 0; k < 9; k++) nd2[LATTICE_C2 - 9 + k] = 3L * ln * ln * 2 + 5 * k + 2;
+}
+
 #endif

@@ -267,7 +267,7 @@ static void test_no_mpi(void **state)
 /* The compliance columns G (C x C) and H (R x C) against K^-1 from a dense
  * Cholesky of the lattice's K, with a supernodal factor and pruned solves,
  * the same factor and whole back-solves, and the factor CHOLMOD chooses;
- * C grown in two calls (72 columns: three blocks of solves; then 30),
+ * C grown in two calls (72 columns: two blocks of solves; then 30),
  * some of its dofs outside R.  Tolerance: 1e-10 of
  * the largest entry of K^-1 (backward-stable solves of a matrix of
  * condition ~1e3 on its free rows; the Dirichlet rows' entries are 1/TGV
@@ -280,15 +280,11 @@ static void test_pruned_columns(void **state)
     double *Tv = malloc(NT * sizeof(double)), *Kd = malloc(sizeof(double) * LD * LD);
     const long nt = test_lattice(LN, TGV, Ti, Tj, Tv, Kd);
     assert_true(nt <= NT);
-    /* R: the dofs of the top plane; C: 72 of them (three blocks of solves), then 30 more of which 9
+    /* R: the dofs of the top plane; C: 72 of them (two blocks of solves), then 30 more of which 9
      * interior ones */
-    enum { C1 = 72, C2 = 30, CT = C1 + C2 };
+    enum { C1 = LATTICE_C1, C2 = LATTICE_C2, CT = C1 + C2 };
     long rows[3 * LN * LN], nd1[C1], nd2[C2];
-    const long top = 3 * LN * LN * (LN - 1);
-    for (long k = 0; k < 3 * LN * LN; k++) rows[k] = top + k;
-    for (long k = 0; k < C1; k++) nd1[k] = top + k;
-    for (long k = 0; k < C2 - 9; k++) nd2[k] = top + C1 + k;
-    for (long k = 0; k < 9; k++) nd2[C2 - 9 + k] = 3 * LN * LN * 2 + 5 * k + 2;
+    test_lattice_sets(LN, rows, nd1, nd2);
     /* the dense reference: columns of K^-1 at C's dofs */
     double *Kinv = calloc((size_t)LD * CT, sizeof(double));
     long cd[CT];

@@ -354,23 +354,20 @@ static void test_shared_lu(void **state)
 /* The replicated CHOLMOD (supernodal, pruned solves) shares the
  * compliance columns out over the ranks: every rank ends with the same G
  * and H (same bits) as one process's computing them all, in the same
- * order; C grown in two calls (72 columns, three blocks of solves on one
+ * order; C grown in two calls (72 columns, two blocks of solves on one
  * process; then 30: the shares are uneven on 4 ranks), some columns
  * outside the rows R.  Tolerance: the
  * same solves of the same factor, 1e-14 of K^-1's largest entry. */
 static void test_replicated_columns(void **state)
 {
     (void)state;
-    enum { LN = 6, LD = 3 * LN * LN * LN, NT = 40 * LN * LN * LN, C1 = 72, C2 = 30, CT = C1 + C2, NR = 3 * LN * LN };
+    enum { LN = 6, LD = 3 * LN * LN * LN, NT = 40 * LN * LN * LN, C1 = LATTICE_C1, C2 = LATTICE_C2, CT = C1 + C2,
+           NR = 3 * LN * LN };
     long *Li = malloc(NT * sizeof(long)), *Lj = malloc(NT * sizeof(long)), bad = -1;
     double *Lv = malloc(NT * sizeof(double));
     const long nt = test_lattice(LN, 1e30, Li, Lj, Lv, NULL);
     long rows[NR], nd1[C1], nd2[C2];
-    const long top = 3 * LN * LN * (LN - 1);
-    for (long k = 0; k < NR; k++) rows[k] = top + k;
-    for (long k = 0; k < C1; k++) nd1[k] = top + k;
-    for (long k = 0; k < C2 - 9; k++) nd2[k] = top + C1 + k;
-    for (long k = 0; k < 9; k++) nd2[C2 - 9 + k] = 3 * LN * LN * 2 + 5 * k + 2;
+    test_lattice_sets(LN, rows, nd1, nd2);
     int fc, ranks;
     ffc_mpi_world(NULL, &ranks, &fc);
     ffc__bulk *b[2] = {NULL, NULL};
