@@ -433,14 +433,16 @@ typedef struct {
                           Newmark), >= 0.  The tangent is K + dvdu D with
                           D = dR/dv the damping matrix; 0 gives K alone */
     const double *fixed; /* [3*nv] or NULL: nonzero where a node's dof is
-                          prescribed (Dirichlet).  Nodal friction drops a
-                          prescribed direction e_k of a slave node that lies in
-                          the contact plane (|n~_k| < 0.9, as node-to-surface
+                          prescribed (Dirichlet): > 0 held at zero (as on a
+                          symmetry plane), < 0 moved.  Nodal friction drops a
+                          direction e_k held at zero of a slave node that lies
+                          in the contact plane (|n~_k| < 0.9, as node-to-surface
                           does): the k components of the node's weighted slip
                           and weighted normal are zeroed before its return
-                          map.  On a symmetry plane the mirror half's
-                          contributions cancel them; elsewhere the support
-                          carries the force along e_k */
+                          map (on a symmetry plane the mirror half's
+                          contributions cancel them).  A moved direction (a
+                          face pushed along the contact plane) keeps its
+                          friction, which the support's reaction carries */
     const double *dual; /* [9 nfs] or NULL: nodal law on linear slave facets with
                           dual multipliers, Phi_a = sum_b A_ab N_b on slave facet f
                           with A = dual + 9 f (row-major, ffc_dual_basis) in place
@@ -695,9 +697,11 @@ int ffc_scene_set_pair_opts(ffc_scene *s, int k, const ffc_pair_opts *o);
 int ffc_scene_set_motion(ffc_scene *s, const double v[], double dt, double dvdu);
 
 /* The prescribed dofs of the scene's nodes: fixed[nv*3] nonzero where a
- * dof is prescribed (Dirichlet), copied; NULL clears them.  Read by the
- * nodal friction law (ffc_law.fixed): a prescribed direction in a slave
- * node's contact plane is dropped from its return map. */
+ * dof is prescribed (Dirichlet), > 0 where it is held at zero (a symmetry
+ * plane's), < 0 where it is moved; copied; NULL clears them.  Read by the
+ * nodal friction law (ffc_law.fixed: a direction held at zero in a slave
+ * node's contact plane is dropped from its return map) and by the free
+ * rigid motions (ffc_scene_free_motions: any nonzero entry). */
 int ffc_scene_set_fixed(ffc_scene *s, const double fixed[]);
 
 /* Contact search of every pair at x = X + u[nv*3]; *linked (may be NULL)
@@ -768,6 +772,15 @@ int ffc_scene_nts_rows(ffc_scene *s, const double u[], const double fixed[], lon
 int ffc_scene_nts_solve(ffc_scene *s, const double u[], const double fixed[], const double rhs[], double x[],
                         long mcap, double m[], long *nrows, long *bad);
 int ffc_scene_nts_update(ffc_scene *s, const double u[], long nrows, const double m[], long *changes, long *bad);
+
+/* The contact residual of the node-to-surface pairs, which
+ * ffc_scene_assemble leaves out (their forces come from multipliers):
+ * added into R[nv*3] from the forces of the last ffc_scene_nts_update,
+ * -f on each contact node and L_a f on the nodes of its master facet (f
+ * the force on the slave node, L its foot's area coordinates), the sign
+ * of ffc_scene_assemble's residual.  The supports' reactions of a
+ * node-to-surface scene need it where a prescribed dof carries contact. */
+int ffc_scene_nts_force(const ffc_scene *s, double R[]);
 
 /* Statistic `name` of pair k (k = -1: all pairs, summed or the largest)
  * from the last assembly (maxDlam, maxDlamT, maxPenNode: the last
@@ -1191,11 +1204,13 @@ int ffc_nts_locate(const ffc_pair *pair, const ffc_nts_law *law, const ffc_searc
  * is dropped.  cap: capacity of the triplet arrays, ccap of c.
  * Writes *ntrip and *nrows (or the sizes needed with FFC_ERR_CAPACITY)
  * and each node's row, nr and tfix.  With friction, a contact node whose
- * slave dof k is fixed in a tangential direction (|n_k| < 0.9, e.g. on a
- * symmetry plane) has no row along that direction t1 (e_k in the tangent
- * plane: the support carries that force, and the row would be nearly
- * empty); stick and slide act along t2 = n x t1 alone (Coulomb's law in
- * one dimension); with two such dofs the node keeps its normal row only. */
+ * slave dof k is held at zero in a tangential direction (fixed > 0,
+ * |n_k| < 0.9, e.g. on a symmetry plane) has no row along that direction
+ * t1 (e_k in the tangent plane: the support carries that force, and the
+ * row would be nearly empty); stick and slide act along t2 = n x t1 alone
+ * (Coulomb's law in one dimension); with two such dofs the node keeps its
+ * normal row only.  A dof moved (fixed < 0: a face pushed along the
+ * contact plane) keeps its row. */
 int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixed[],
                  long nn, ffc_nts_node nodes[], long cap, long Bi[], long Bj[],
                  double Bv[], double Fv[], long ccap, double c[], long *ntrip, long *nrows);

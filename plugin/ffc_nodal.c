@@ -34,8 +34,8 @@
  *     dT_a = dT/dr dr~_a + dT/dn dn~_a - dT/dt_N (eps H(t_a) / W_a) C_a^T,
  *     dr~_a = [sum_q N_a (da_q Q_q + (r_q - r~_a) dda_q^T)] / W_a,
  *     dn~_a = (I - n~ n~^T) / |m_a| sum_q N_a (da_q dn_q + n_q dda_q^T).
- * A prescribed direction e_k of node a in its contact plane (law->fixed,
- * |n~_k| < 0.9) is dropped: r~ and m replaced by Q r~ and Q m, Q = I - e_k e_k^T
+ * A direction e_k of node a held at zero in its contact plane (law->fixed
+ * > 0, |n~_k| < 0.9) is dropped: r~ and m replaced by Q r~ and Q m, Q = I - e_k e_k^T
  * (constant), so dr~ and dm become Q dr~ and Q dm, and n~ = Q m / |Q m|;
  * the trial uses Q lambda_T (so the update keeps lambda_T,k = 0).
  * On a symmetry plane normal to e_k this is the mirror half's share (its
@@ -195,11 +195,12 @@ int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw
             if (!lam_t) continue;
             nfn_t *T = &w->T[v];
             T->mnorm = sqrt(ffc__dot(T->n, T->n));
-            /* prescribed directions in the contact plane: their components of
-             * the weighted slip and normal dropped (law->fixed) */
+            /* directions held at zero in the contact plane (a symmetry
+             * plane's): their components of the weighted slip and normal
+             * dropped (law->fixed > 0; a prescribed motion, < 0, keeps them) */
             T->drop = 0;
             for (int i = 0; law->fixed && i < 3; i++)
-                if (law->fixed[3 * v + i] != 0.0 && fabs(T->n[i]) < 0.9 * T->mnorm) {
+                if (law->fixed[3 * v + i] > 0.0 && fabs(T->n[i]) < 0.9 * T->mnorm) {
                     T->drop |= 1 << i;
                     T->r[i] = T->n[i] = 0.0;
                 }

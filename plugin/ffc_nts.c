@@ -316,11 +316,13 @@ int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixe
             coef[a + 1] = -d->L[a];
         }
         memcpy(d->nr, d->n, sizeof d->nr);
-        /* prescribed tangential dofs of the slave node (|n_k| < 0.9: e.g. a
-         * symmetry plane): those directions get no row */
+        /* tangential dofs of the slave node held at zero (fixed > 0, |n_k|
+         * < 0.9: e.g. a symmetry plane): those directions get no row (a
+         * prescribed motion, fixed < 0, keeps its row: the master follows
+         * it while the node sticks) */
         d->tfix = 0;
         for (int i = 0; fixed && i < 3; i++)
-            if (fixed[3 * d->node + i] != 0 && fabs(d->n[i]) < 0.9) d->tfix = d->tfix ? 4 : i + 1;
+            if (fixed[3 * d->node + i] > 0 && fabs(d->n[i]) < 0.9) d->tfix = d->tfix ? 4 : i + 1;
         double v[3][3], w[3][3], Cm[3][3] = {{0}};
         const int nrow = force_dirs(law, d, d->n, w);
         const int skip1 = nrow == 3 && d->tfix >= 1 && d->tfix <= 3;

@@ -1218,6 +1218,24 @@ int ffc_scene_nts_update(ffc_scene *s, const double u[], long nrows, const doubl
     return FFC_OK;
 }
 
+int ffc_scene_nts_force(const ffc_scene *s, double R[])
+{
+    if (!s || !R) return FFC_ERR_NULL;
+    for (int k = 0; k < s->np; k++) {
+        const scene_pair *p = &s->p[k];
+        if (p->o.method != FFC_METHOD_NTS) continue;
+        for (long i = 0; i < p->nn; i++) {
+            const ffc_nts_node *a = &p->nodes[i];
+            if (a->state == FFC_NTS_OPEN || a->mf < 0) continue;   /* (no force) */
+            for (int j = 0; j < 3; j++) {
+                R[3 * a->node + j] -= a->f[j];
+                for (int c = 0; c < 3; c++) R[3 * p->Fm[3 * a->mf + c] + j] += a->L[c] * a->f[j];
+            }
+        }
+    }
+    return FFC_OK;
+}
+
 /* ------------------------------------------- condensed Newton (small strain) */
 
 ffc_newton_opts ffc_newton_defaults(void)

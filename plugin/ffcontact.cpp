@@ -1387,7 +1387,8 @@ long sceneFreeMotionsU(const Named &, FFScene *const &C, KN<double> *const &u, K
 
 // ffcInverted(C, u): the first tetrahedron inverted or collapsed at u, -1 if none.
 // ffcFixed(C, fixed): the prescribed dofs (fixed[i] != 0, 3 per node: a
-// Dirichlet mask), read by the nodal friction law (ffc_scene_set_fixed).
+// Dirichlet mask; > 0 held at zero, < 0 moved), read by the nodal friction
+// law and the free motions (ffc_scene_set_fixed).
 long sceneFixed(const Named &, FFScene *const &C, KN<double> *const &fixed)
 {
     const char *fn = "ffcFixed";
@@ -1694,7 +1695,8 @@ long parallelSolveOwn(Matrice_Creuse<double> *const &A, KN<double> *const &b, KN
 // Node-to-surface pairs. ffcNTSStep(C): a new load step (per-step flips,
 // kept facets and forces cleared). ffcRows(C, u, fixed, B, Bf, Cm, c): the
 // constraint rows of every node-to-surface pair at u (see ffc_nts_rows),
-// without the columns of dofs with fixed != 0 (moved to c); returns the
+// without the columns of dofs with fixed != 0 (moved to c; > 0: held at
+// zero, no friction row along it in the contact plane); returns the
 // rows. ffcUpdate(C, u, m): after the saddle-point solve, the forces from
 // the multipliers m and the transitions; returns the state changes.
 long sceneNtsStep(const Named &, FFScene *const &C)
@@ -1796,6 +1798,23 @@ long sceneUpdate(const Named &, FFScene *const &C, KN<double> *const &u, KN<doub
     return changes;
 }
 
+// ffcNTSForce(C, R): the contact residual of the node-to-surface pairs
+// from their last ffcUpdate (ffcResidual leaves them out), into R (resized
+// to the scene's dofs); returns 0.
+long sceneNtsForce(const Named &, FFScene *const &C, KN<double> *const &R)
+{
+    const char *fn = "ffcNTSForce";
+    SceneData &d = need_scene(fn, C);
+    if (!R) fail(fn, "argument 'R': array is not defined");
+    const long n = 3 * d.nn;
+    std::vector<double> F(n, 0.0);
+    int st = ffc_scene_nts_force(d.s, F.data());
+    if (st) scene_error(fn, st, -1, "the node-to-surface forces");
+    R->resize(n);
+    for (long i = 0; i < n; i++) (*R)[i] = F[i];
+    return 0;
+}
+
 template <class R, class... A>
 NamedOp<R, A...> *named(const char *fn, basicAC_F0::name_and_type *names, int n, R (*f)(const Named &, const A &...))
 {
@@ -1846,6 +1865,7 @@ void init_scene()
     Global.Add("ffcNTSStep", "(", named<long, S>("ffcNTSStep", nullptr, 0, sceneNtsStep));
     Global.Add("ffcRows", "(", named<long, S, V, V, M, M, M, V>("ffcRows", nullptr, 0, sceneRows));
     Global.Add("ffcUpdate", "(", named<long, S, V, V>("ffcUpdate", nullptr, 0, sceneUpdate));
+    Global.Add("ffcNTSForce", "(", named<long, S, V>("ffcNTSForce", nullptr, 0, sceneNtsForce));
 }
 
 } // namespace

@@ -515,10 +515,11 @@ static void test_assembled_tangent(void **state)
 }
 
 /* Nodal friction with prescribed directions (ffc_law.fixed): every slave
- * node's x dof prescribed (x lies in the contact plane): the tangent of
+ * node's x dof held at zero (x lies in the contact plane): the tangent of
  * the dropped law against central differences, all stick and all slip,
  * small strain and finite deformation; the update leaves lambda_T,x = 0 at
- * every slave node, and a node without a prescribed dof is unchanged. */
+ * every slave node, and a node without a prescribed dof is unchanged; the
+ * same dofs moved (fixed < 0) drop nothing. */
 static void test_assembled_fixed_direction(void **state)
 {
     (void)state;
@@ -556,6 +557,15 @@ static void test_assembled_fixed_direction(void **state)
         double d = 0;
         for (int i = 0; i < NV * 3; i++) d = fmax(d, fabs(R1[i] - R0[i]));
         assert_true(d > 1e-6);
+        /* the same dofs moved (fixed < 0: a face pushed along the contact)
+         * keep their friction: the plain law's residual, bit for bit */
+        static double moved[NV * 3];
+        for (int i = 0; i < NV * 3; i++) moved[i] = -fixed[i];
+        ffc_law pushed = slip;
+        pushed.fixed = moved;
+        double R2[NV * 3] = {0};
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &pushed, R2, 0, NULL, NULL, NULL, &nt, &st, &bad), FFC_OK);
+        for (int i = 0; i < NV * 3; i++) assert_true(R2[i] == R0[i]);
         free(a);
     }
 }
