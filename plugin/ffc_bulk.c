@@ -43,6 +43,8 @@ struct ffc__bulk {
     long *Ti, *Tj;             /* [nt] K's triplets (both triangles) */
     double *Tv;                /* [nt] (force/length) */
     double *diag;              /* [n] K's diagonal */
+    long nlift;                /* K's triplets in a Dirichlet column of a free row (count) */
+    long *lift;                /* [nlift] their indices (lift_dirichlet) */
     unsigned char *big;        /* [n] 1 on Dirichlet rows (diagonal >= 1e12 x the median) */
     double kfree;              /* mean diagonal of the other rows (force/length) */
     double *sh;                /* [n] shift s on the dofs of the first contact tangent */
@@ -160,7 +162,7 @@ void ffc__bulk_free(ffc__bulk *b)
     if (b->started) cholmod_finish(&b->cc);
     ffc__mumps_free(b->mp);
     ffc__pdense_free(b->pd);
-    free(b->Ti); free(b->Tj); free(b->Tv); free(b->diag); free(b->big); free(b->sh);
+    free(b->Ti); free(b->Tj); free(b->Tv); free(b->diag); free(b->big); free(b->sh); free(b->lift);
     free(b->dof); free(b->G); free(b->pos); free(b->nd); free(b->A); free(b->piv);
     free(b->rv); free(b->ri);
     free(b->xc); free(b->w); free(b->r); free(b->dx); free(b->t); free(b->kv);
@@ -255,6 +257,15 @@ int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const do
         if (!b->big[i]) { sum += b->diag[i]; cnt++; }
     }
     b->kfree = cnt ? sum / cnt : med;
+    long nl = 0;
+    for (long t = 0; t < nt; t++) nl += b->big[Tj[t]] && !b->big[Ti[t]];
+    b->lift = malloc((size_t)(nl ? nl : 1) * sizeof(long));
+    if (!b->lift) {
+        ffc__bulk_free(b);
+        return FFC_ERR_MEMORY;
+    }
+    for (long t = 0; t < nt; t++)
+        if (b->big[Tj[t]] && !b->big[Ti[t]]) b->lift[b->nlift++] = t;
     *out = b;
     return FFC_OK;
 }
@@ -731,8 +742,10 @@ static void lift_dirichlet(const ffc__bulk *b, long nt, const long Ti[], const l
     memcpy(t, rhs, (size_t)b->n * sizeof(double));
     for (long i = 0; i < b->n; i++)
         if (b->big[i]) t[i] = b->kfree * (rhs[i] / b->diag[i]);
-    for (long k = 0; k < b->nt; k++)
-        if (b->big[b->Tj[k]] && !b->big[b->Ti[k]]) t[b->Ti[k]] -= b->Tv[k] * (rhs[b->Tj[k]] / b->diag[b->Tj[k]]);
+    for (long e = 0; e < b->nlift; e++) {
+        const long k = b->lift[e];
+        t[b->Ti[k]] -= b->Tv[k] * (rhs[b->Tj[k]] / b->diag[b->Tj[k]]);
+    }
     for (long k = 0; k < nt; k++)
         if (b->big[Tj[k]] && !b->big[Ti[k]]) t[Ti[k]] -= Tv[k] * (rhs[Tj[k]] / b->diag[Tj[k]]);
 }

@@ -40,6 +40,12 @@ int ffc__lu_solve(long m, double A[], long piv[], double b[]);
  * outside [0, n) or a non-finite value among (Ti, Tj, Tv)[nt], else FFC_OK */
 int ffc__check_triplets(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long *bad);
 
+/* Six times the signed volume of each tetrahedron T[nt*4] at X (v0[nt]),
+ * and ffc_volume_check against them (corner indices already checked):
+ * the reference volumes computed once instead of at each check. */
+void ffc__tet_volumes(long nt, const long T[], const double X[], double v0[]);
+int ffc__volume_check_ref(long nt, const long T[], const double X[], const double v0[], const double u[], long *bad);
+
 /* The dual basis of a linear slave facet from its covered part
  * (ffc_mortar.c, see ffc_dual_basis): the moments c = sum_q w_q,
  * D_a = sum_q w_q N_a, M_ab = sum_q w_q N_a N_b of its points, */

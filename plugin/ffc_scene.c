@@ -44,6 +44,7 @@ struct ffc_scene {
     double *X;         /* [nv*3] reference positions (length) */
     long nt;           /* tetrahedra (for the inversion check; 0: none) */
     long *T;           /* [nt*4] corner nodes of each tetrahedron */
+    double *v0;        /* [nt] six times each one's reference volume (length^3) */
     ffc_effects fx;    /* the scene's effects (friction: per pair, mu > 0) */
     double *u_prev;    /* [nv*3] displacement at the last commit (length) */
     double *v;         /* [nv*3] velocities (dynamic; length/time) */
@@ -125,6 +126,7 @@ void ffc_scene_free(ffc_scene *s)
     free(s->p);
     free(s->X);
     free(s->T);
+    free(s->v0);
     free(s->u_prev);
     free(s->v);
     free(s->x);
@@ -159,12 +161,14 @@ int ffc_scene_create(int nper, long nv, const double X[], long nt, const long T[
     s->v = calloc(3 * nv, sizeof *s->v);
     s->x = malloc(3 * nv * sizeof *s->x);
     s->T = nt ? malloc(4 * nt * sizeof *s->T) : NULL;
-    if (!s->X || !s->u_prev || !s->v || !s->x || (nt && !s->T)) {
+    s->v0 = nt ? malloc(nt * sizeof *s->v0) : NULL;
+    if (!s->X || !s->u_prev || !s->v || !s->x || (nt && (!s->T || !s->v0))) {
         ffc_scene_free(s);
         return FFC_ERR_MEMORY;
     }
     memcpy(s->X, X, 3 * nv * sizeof *X);
     if (nt) memcpy(s->T, T, 4 * nt * sizeof *T);
+    ffc__tet_volumes(nt, s->T, s->X, s->v0);
     *out = s;
     return FFC_OK;
 }
@@ -887,7 +891,8 @@ int ffc_scene_check_volume(const ffc_scene *s, const double u[], long *bad)
 {
     if (!s || !u) return FFC_ERR_NULL;
     if (!s->nt) return FFC_OK;
-    return ffc_volume_check(s->nt, s->T, s->nv, s->X, u, bad);
+    long dummy;
+    return ffc__volume_check_ref(s->nt, s->T, s->X, s->v0, u, bad ? bad : &dummy);
 }
 
 long ffc_scene_surface_mask(const ffc_scene *s, long n, double mask[])

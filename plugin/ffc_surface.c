@@ -192,6 +192,22 @@ static double tet_vol6(const long v[4], const double X[], const double u[])
     return ffc__dot(c, e[2]);
 }
 
+void ffc__tet_volumes(long nt, const long T[], const double X[], double v0[])
+{
+    for (long t = 0; t < nt; t++) v0[t] = tet_vol6(T + 4 * t, X, NULL);
+}
+
+int ffc__volume_check_ref(long nt, const long T[], const double X[], const double v0[], const double u[], long *bad)
+{
+    *bad = -1;
+    for (long t = 0; t < nt; t++) {
+        const double v = tet_vol6(T + 4 * t, X, u);
+        if (!isfinite(v)) { *bad = t; return FFC_ERR_NONFINITE; }
+        if (!(v / v0[t] > 1e-12)) { *bad = t; return FFC_ERR_INVERTED; }
+    }
+    return FFC_OK;
+}
+
 int ffc_volume_check(long nt, const long T[], long nv, const double X[],
                      const double u[], long *bad)
 {

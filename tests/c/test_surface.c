@@ -88,6 +88,33 @@ static void test_check_errors(void **state)
     assert_int_equal(ffc_surface_check(5, 1, G, 4, TX, NULL, &bad), FFC_ERR_NODES);
 }
 
+/* The scene's inversion check (reference volumes kept from its creation)
+ * against ffc_volume_check, on the tetrahedron in both orientations:
+ * unmoved, rotated by 180 degrees, reflected, one corner moved through
+ * the opposite face. */
+static void test_scene_volume(void **state)
+{
+    (void)state;
+    const long T[8] = {0, 1, 2, 3, 0, 2, 1, 3};
+    const ffc_effects fx = {0, 0, 0};
+    ffc_scene *s = NULL;
+    assert_int_equal(ffc_scene_create(3, 4, TX, 2, T, &fx, &s), FFC_OK);
+    double w[4][12] = {{0}};
+    for (int v = 0; v < 4; v++) {
+        w[1][3 * v] = w[2][3 * v] = -2 * TX[3 * v];
+        w[1][3 * v + 1] = -2 * TX[3 * v + 1];
+    }
+    w[3][11] = -2.0;
+    const int expect[4] = {FFC_OK, FFC_OK, FFC_ERR_INVERTED, FFC_ERR_INVERTED};
+    for (int k = 0; k < 4; k++) {
+        long b1 = -2, b2 = -3;
+        assert_int_equal(ffc_volume_check(2, T, 4, TX, w[k], &b1), expect[k]);
+        assert_int_equal(ffc_scene_check_volume(s, w[k], &b2), expect[k]);
+        assert_int_equal(b1, b2);
+    }
+    ffc_scene_free(s);
+}
+
 /* area of the tetrahedron's faces: 3 * 1/2 + sqrt(3)/2; and of a curved
  * 6-node facet on a sphere against a fine flat triangulation of it */
 static void test_area(void **state)
@@ -145,6 +172,7 @@ int main(void)
         cmocka_unit_test(test_select_orients_outward),
         cmocka_unit_test(test_select_by_label),
         cmocka_unit_test(test_check_errors),
+        cmocka_unit_test(test_scene_volume),
         cmocka_unit_test(test_area),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
