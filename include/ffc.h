@@ -1101,7 +1101,8 @@ int ffc_scene_newton(ffc_scene *s, const double r[], double u[], const ffc_newto
  * Transitions (ffc_nts_update): open -> contact when g < -gtol (stick if
  * nu_s > 0 and the node has not moved tangentially since u^n, else slide
  * along that motion); contact -> open when F_n < -ftol max F_n
- * (tension release); stick -> slide when |F_t| > nu_s F_n (d = -F_t/|F_t|);
+ * (tension release); stick -> slide when |F_t| > nu_s F_n (1 + 1e-9)
+ * (d = -F_t/|F_t|);
  * slide -> stick when |q| <= nu_d F_n, with q = -F_t + c s, s the
  * tangential slip since the last converged step, c = law->scale (the
  * projection form of Coulomb's law: a primal-dual active-set rule, noise
