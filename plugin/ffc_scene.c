@@ -1231,7 +1231,10 @@ int ffc_scene_nts_force(const ffc_scene *s, double R[])
         if (p->o.method != FFC_METHOD_NTS) continue;
         for (long i = 0; i < p->nn; i++) {
             const ffc_nts_node *a = &p->nodes[i];
-            if (a->state == FFC_NTS_OPEN || a->mf < 0) continue;   /* (no force) */
+            /* (an open node's force is released; at a converged update no
+             * node changed state, so these are the forces that balanced the
+             * last solve) */
+            if (a->state == FFC_NTS_OPEN || a->mf < 0) continue;
             for (int j = 0; j < 3; j++) {
                 R[3 * a->node + j] -= a->f[j];
                 for (int c = 0; c < 3; c++) R[3 * p->Fm[3 * a->mf + c] + j] += a->L[c] * a->f[j];

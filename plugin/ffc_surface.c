@@ -197,13 +197,21 @@ void ffc__tet_volumes(long nt, const long T[], const double X[], double v0[])
     for (long t = 0; t < nt; t++) v0[t] = tet_vol6(T + 4 * t, X, NULL);
 }
 
+/* the tetrahedron v[4] at X + u against its reference six-volume v0:
+ * FFC_ERR_NONFINITE, FFC_ERR_INVERTED (turned or collapsed), or FFC_OK */
+static int tet_state(const long v[4], const double X[], double v0, const double u[])
+{
+    const double vu = tet_vol6(v, X, u);
+    if (!isfinite(vu)) return FFC_ERR_NONFINITE;
+    return vu / v0 > 1e-12 ? FFC_OK : FFC_ERR_INVERTED;
+}
+
 int ffc__volume_check_ref(long nt, const long T[], const double X[], const double v0[], const double u[], long *bad)
 {
     *bad = -1;
     for (long t = 0; t < nt; t++) {
-        const double v = tet_vol6(T + 4 * t, X, u);
-        if (!isfinite(v)) { *bad = t; return FFC_ERR_NONFINITE; }
-        if (!(v / v0[t] > 1e-12)) { *bad = t; return FFC_ERR_INVERTED; }
+        const int st = tet_state(T + 4 * t, X, v0[t], u);
+        if (st) { *bad = t; return st; }
     }
     return FFC_OK;
 }
@@ -219,9 +227,8 @@ int ffc_volume_check(long nt, const long T[], long nv, const double X[],
     for (long t = 0; t < nt; t++) {
         for (int a = 0; a < 4; a++)
             if (T[4 * t + a] < 0 || T[4 * t + a] >= nv) { *bad = t; return FFC_ERR_INDEX; }
-        const double v0 = tet_vol6(T + 4 * t, X, NULL), v = tet_vol6(T + 4 * t, X, u);
-        if (!isfinite(v)) { *bad = t; return FFC_ERR_NONFINITE; }
-        if (!(v / v0 > 1e-12)) { *bad = t; return FFC_ERR_INVERTED; }
+        const int st = tet_state(T + 4 * t, X, tet_vol6(T + 4 * t, X, NULL), u);
+        if (st) { *bad = t; return st; }
     }
     return FFC_OK;
 }
