@@ -1,10 +1,25 @@
-/* ffc_mpi.c: the ranks of MPI_COMM_WORLD, reductions over them, and this
- * process's peak memory (a build without -DFFC_MPI is one rank). */
+/* ffc_mpi.c: the ranks of MPI_COMM_WORLD, reductions and gathers over them,
+ * and this process's peak memory (a build without -DFFC_MPI is one rank). */
 #include <stdlib.h>
+#include <string.h>
 #include <sys/resource.h>
 
 #include "ffc.h"
 #include "ffc_internal.h"
+
+/* one rank: the triplets copied (ffc_mpi_gather_triplets) */
+static int gather_one(long nt, const long Ti[], const long Tj[], const double Tv[], long cap, long Oi[], long Oj[],
+                      double Ov[], long *total)
+{
+    *total = nt;
+    if (nt > cap) return FFC_ERR_SIZE;
+    if (nt > 0) {
+        memcpy(Oi, Ti, (size_t)nt * sizeof *Oi);
+        memcpy(Oj, Tj, (size_t)nt * sizeof *Oj);
+        memcpy(Ov, Tv, (size_t)nt * sizeof *Ov);
+    }
+    return FFC_OK;
+}
 
 #ifdef FFC_MPI
 #include <mpi.h>
@@ -46,6 +61,49 @@ int ffc_mpi_allreduce(double v[], long n, int op)
     int e = MPI_Reduce(rank == 0 ? MPI_IN_PLACE : v, rank == 0 ? v : NULL, (int)n, MPI_DOUBLE, o, 0, MPI_COMM_WORLD);
     if (e == MPI_SUCCESS) e = MPI_Bcast(v, (int)n, MPI_DOUBLE, 0, MPI_COMM_WORLD);
     return e == MPI_SUCCESS ? FFC_OK : FFC_ERR_UNAVAILABLE;
+}
+
+/* the most negative of the ranks' statuses, on every rank (a rank that
+ * returns early alone would leave the others waiting in a collective) */
+static int agree_status(int st)
+{
+    int all = st;
+    if (running()) MPI_Allreduce(&st, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    return all;
+}
+
+int ffc_mpi_gather_triplets(long nt, const long Ti[], const long Tj[], const double Tv[], long cap, long Oi[],
+                            long Oj[], double Ov[], long *total)
+{
+    int st = FFC_OK;
+    if (!total) st = FFC_ERR_NULL;
+    else if (nt < 0 || nt > 2147483647L || cap < 0) st = FFC_ERR_SIZE;
+    else if ((nt > 0 && (!Ti || !Tj || !Tv)) || (cap > 0 && (!Oi || !Oj || !Ov))) st = FFC_ERR_NULL;
+    if (total) *total = 0;
+    if ((st = agree_status(st))) return st;
+    if (!running()) return gather_one(nt, Ti, Tj, Tv, cap, Oi, Oj, Ov, total);
+    int size = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    long *cnt = malloc((size_t)size * sizeof *cnt);
+    int *ci = malloc(2 * (size_t)size * sizeof *ci), *dsp = ci ? ci + size : NULL;
+    st = agree_status(cnt && ci ? FFC_OK : FFC_ERR_MEMORY);
+    if (!st && MPI_Allgather(&nt, 1, MPI_LONG, cnt, 1, MPI_LONG, MPI_COMM_WORLD) != MPI_SUCCESS)
+        st = FFC_ERR_UNAVAILABLE;
+    long all = 0;
+    for (int r = 0; r < size && !st; r++) {
+        if (all > 2147483647L - cnt[r]) st = FFC_ERR_SIZE;   /* (MPI's counts and offsets are int) */
+        else { ci[r] = (int)cnt[r]; dsp[r] = (int)all; all += cnt[r]; }
+    }
+    if (!st) *total = all;
+    if (!st && all > cap) st = FFC_ERR_SIZE;
+    st = agree_status(st);
+    if (!st && (MPI_Allgatherv(Ti, (int)nt, MPI_LONG, Oi, ci, dsp, MPI_LONG, MPI_COMM_WORLD) != MPI_SUCCESS ||
+                MPI_Allgatherv(Tj, (int)nt, MPI_LONG, Oj, ci, dsp, MPI_LONG, MPI_COMM_WORLD) != MPI_SUCCESS ||
+                MPI_Allgatherv(Tv, (int)nt, MPI_DOUBLE, Ov, ci, dsp, MPI_DOUBLE, MPI_COMM_WORLD) != MPI_SUCCESS))
+        st = FFC_ERR_UNAVAILABLE;
+    free(cnt);
+    free(ci);
+    return st;
 }
 
 int ffc_mpi_barrier(void)
@@ -110,6 +168,16 @@ int ffc_mpi_allreduce(double v[], long n, int op)
     if (n > 0 && !v) return FFC_ERR_NULL;
     if (op < 0 || op > 2) return FFC_ERR_VALUE;
     return FFC_OK;
+}
+
+int ffc_mpi_gather_triplets(long nt, const long Ti[], const long Tj[], const double Tv[], long cap, long Oi[],
+                            long Oj[], double Ov[], long *total)
+{
+    if (!total) return FFC_ERR_NULL;
+    *total = 0;
+    if (nt < 0 || cap < 0) return FFC_ERR_SIZE;
+    if ((nt > 0 && (!Ti || !Tj || !Tv)) || (cap > 0 && (!Oi || !Oj || !Ov))) return FFC_ERR_NULL;
+    return gather_one(nt, Ti, Tj, Tv, cap, Oi, Oj, Ov, total);
 }
 
 int ffc_mpi_barrier(void) { return FFC_OK; }

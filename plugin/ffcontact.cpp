@@ -407,6 +407,7 @@ long ffcRankSumArray(KN<double> *const &v)
     for (long i = 0; i < n; i++) (*v)[i] = w[i];
     return n;
 }
+long ffcRankSumMatrix(Matrice_Creuse<double> *const &A);
 double ffcRankMax(double x) { return rankReduce("ffcRankMax", x, 1); }
 long ffcBarrier() { return ffc_mpi_barrier(); }
 double ffcPeakMB() { return ffc_peak_mb(); }
@@ -451,12 +452,47 @@ void triplets_to_matrix(const char *fn, long n, long nt, const long *Ti, const l
     std::vector<double> Cv(nt > 0 ? nt : 1);
     const long nz = ffc_triplets_sum(n, nt, Ti, Tj, Tv, Ci.data(), Cj.data(), Cv.data(), rp.data(), wk.data());
     if (nz < 0) fail(fn, std::string("the contact tangent: ") + ffc_strerror((int)nz));
-    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, (int)std::min(nz, 1L << 30), lower ? 1 : 0);
+    long nk = 0;   // (the entries kept: all, or the lower triangle's)
     for (long t = 0; t < nz; t++)
-        if (!lower || Ci[t] >= Cj[t]) (*h)((int)Ci[t], (int)Cj[t]) += Cv[t];
+        if (!lower || Ci[t] >= Cj[t]) { Ci[nk] = Ci[t]; Cj[nk] = Cj[t]; Cv[nk] = Cv[t]; nk++; }
+    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, 0, lower ? 1 : 0);
+    h->set(n, n, lower ? 1 : 0, (size_t)nk, Ci.data(), Cj.data(), Cv.data(), 0);   // (distinct entries: no lookups)
     K->A.master(h);
     K->typemat = 0;
 }
+
+namespace {
+// ffcRankSum(A): the matrix A replaced on every rank by the sum of every
+// rank's A (pieces of one matrix assembled on parts of the mesh; every
+// rank passes an n x n matrix of the same n). Returns its entries.
+long ffcRankSumMatrix(Matrice_Creuse<double> *const &A)
+{
+    const char *fn = "ffcRankSum";
+    std::vector<long> Ti, Tj;
+    std::vector<double> Tv;
+    const long n = matrix_triplets(fn, "A", A, Ti, Tj, Tv);
+    double lo = (double)n, hi = (double)n;
+    int st = ffc_mpi_allreduce(&lo, 1, 2);
+    if (!st) st = ffc_mpi_allreduce(&hi, 1, 1);
+    if (st) fail(fn, ffc_strerror(st));
+    if (lo != hi) {
+        std::ostringstream m;
+        m << "argument 'A': " << n << " x " << n << " here, but the ranks' matrices range from " << (long)lo
+          << " to " << (long)hi << " rows (every rank passes its piece of one matrix)";
+        fail(fn, m.str());
+    }
+    long total = 0;
+    st = ffc_mpi_gather_triplets((long)Tv.size(), Ti.data(), Tj.data(), Tv.data(), 0, nullptr, nullptr, nullptr, &total);
+    if (st && st != FFC_ERR_SIZE) fail(fn, ffc_strerror(st));
+    std::vector<long> Oi(total > 0 ? total : 1), Oj(total > 0 ? total : 1);
+    std::vector<double> Ov(total > 0 ? total : 1);
+    st = ffc_mpi_gather_triplets((long)Tv.size(), Ti.data(), Tj.data(), Tv.data(), total, Oi.data(), Oj.data(),
+                                 Ov.data(), &total);
+    if (st) fail(fn, ffc_strerror(st));
+    triplets_to_matrix(fn, n, total, Oi.data(), Oj.data(), Ov.data(), false, A);
+    return total;
+}
+} // namespace
 
 
 // The helpers of the scene calls: labels, effects bits, finite arrays, the
@@ -1886,6 +1922,7 @@ static void init()
     Global.Add("ffcRankSum", "(", new OneOperator1<double, double>(ffcRankSum));
     Global.Add("ffcRankMax", "(", new OneOperator1<double, double>(ffcRankMax));
     Global.Add("ffcRankSum", "(", new OneOperator1_<long, KN<double> *>(ffcRankSumArray));
+    Global.Add("ffcRankSum", "(", new OneOperator1_<long, Matrice_Creuse<double> *>(ffcRankSumMatrix));
     Global.Add("ffcParallelSolve", "(", new OneOperator4_<long, Matrice_Creuse<double> *, KN<double> *, KN<double> *, long>(parallelSolveOwn));
     Global.Add("ffcMassSpread", "(",
                new OneOperator3_<long, Matrice_Creuse<double> *, KN<double> *, Matrice_Creuse<double> *>(massSpread));

@@ -253,6 +253,23 @@ static void test_no_mpi(void **state)
     assert_close(v[0], 3.0, 0.0);
     assert_int_equal(ffc_mpi_allreduce(v, 2, 5), FFC_ERR_VALUE);
     assert_int_equal(ffc_mpi_allreduce(NULL, 2, 0), FFC_ERR_NULL);
+    /* one rank: the gathered triplets are a copy; capacity, then arguments */
+    const long gi[3] = {0, 2, 1}, gj[3] = {1, 2, 0};
+    const double gv[3] = {1.5, -2.0, 4.0};
+    long oi[3], oj[3], total = -1;
+    double ov[3];
+    assert_int_equal(ffc_mpi_gather_triplets(3, gi, gj, gv, 2, oi, oj, ov, &total), FFC_ERR_SIZE);
+    assert_int_equal(total, 3);
+    assert_int_equal(ffc_mpi_gather_triplets(3, gi, gj, gv, 3, oi, oj, ov, &total), FFC_OK);
+    for (int k = 0; k < 3; k++) {
+        assert_int_equal(oi[k], gi[k]);
+        assert_int_equal(oj[k], gj[k]);
+        assert_close(ov[k], gv[k], 0.0);
+    }
+    assert_int_equal(ffc_mpi_gather_triplets(-1, gi, gj, gv, 3, oi, oj, ov, &total), FFC_ERR_SIZE);
+    assert_int_equal(ffc_mpi_gather_triplets(3, NULL, gj, gv, 3, oi, oj, ov, &total), FFC_ERR_NULL);
+    assert_int_equal(ffc_mpi_gather_triplets(3, gi, gj, gv, 3, oi, NULL, ov, &total), FFC_ERR_NULL);
+    assert_int_equal(ffc_mpi_gather_triplets(3, gi, gj, gv, 3, oi, oj, ov, NULL), FFC_ERR_NULL);
     assert_true(ffc_peak_mb() > 0.0);
     ffc_solve_info in;
     assert_int_equal(ffc_scene_solve_info(s, &in), FFC_OK);
