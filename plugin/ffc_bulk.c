@@ -1220,6 +1220,35 @@ static int gmres_kept(ffc__bulk *b, long a, const double M[], const double Gaa[]
     return iters;
 }
 
+/* Products with G, H and G U on the ranks of a replicated bulk (rsize >
+ * 1): each rank computes a contiguous share of the rows (of the columns
+ * for G U) and one all-gather gives every rank all of them.  These
+ * products are bound by memory bandwidth, which the ranks of one machine
+ * share: computed whole on every rank, two ranks took each one about
+ * twice as long as one process; shared, G and H are streamed once in all.
+ * Every value is that of the rank that computed it: the same bits on
+ * every rank.  Below SHARE_MIN entries every rank computes the product
+ * whole (the all-gather's latency would cost more). */
+enum { SHARE_MIN = 1 << 15 };
+
+/* y = alpha A x + beta y, A n x k (column-major, leading dimension lda) */
+static int shared_gemv(ffc__bulk *b, long n, long k, double alpha, const double *A, long lda, const double x[],
+                       double beta, double y[])
+{
+    const int one = 1, ki = (int)k, ldai = (int)lda;
+    if (n <= 0 || k <= 0) return FFC_OK;   /* (the callers' cases: y as it was) */
+    if (b->rsize < 2 || n * k < SHARE_MIN) {
+        const int ni = (int)n;
+        dgemv_("N", &ni, &ki, &alpha, A, &ldai, x, &one, &beta, y, &one);
+        return FFC_OK;
+    }
+    for (int r = 0; r < b->rsize; r++) b->rcount[r] = n * (r + 1) / b->rsize - n * r / b->rsize;
+    const long lo = n * b->rrank / b->rsize, hi = n * (b->rrank + 1) / b->rsize;
+    const int ni = (int)(hi - lo);
+    if (ni > 0) dgemv_("N", &ni, &ki, &alpha, A + lo, &ldai, x, &one, &beta, y + lo, &one);
+    return ffc__mpi_allgather(b->rcomm, y, b->rcount);
+}
+
 /* The Newton direction dy of (I + G Kc') dy = -G rho, Kc' = Kc_CC - S from
  * the triplets (b->ti, tj, tv)[nt], reduced to Kc's support a: with
  * q = G rho, t + G_aa M t = -q_a (dense LU, b->A), dy = -q - G_Ca M t;
@@ -1247,7 +1276,7 @@ static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], dou
     for (long k = 0; k < m && !st; k++)
         if (b->sh[b->dof[k]] != 0.0 && ap[k] < 0) { ap[k] = a; ad[a++] = k; }
     *na = a;
-    const int mi = (int)m, ldi = (int)ld, one = 1, ai = (int)a;
+    const int one = 1, ai = (int)a;
     const double d1 = 1.0, d0 = 0.0;
     if (!st && a * a > b->wcap) { /* the dense work of the support, grown as needed */
         double *Mw = realloc(b->Mw, (size_t)(a * a) * sizeof(double));
@@ -1257,7 +1286,7 @@ static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], dou
         else st = FFC_ERR_MEMORY;
     }
     double *M = b->Mw, *Gaa = b->Gw;
-    if (!st && m > 0) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, rho, &one, &d0, q, &one); /* q = G rho */
+    if (!st) st = shared_gemv(b, m, m, 1.0, b->G, ld, rho, 0.0, q); /* q = G rho */
     if (!st && a > 0) {
         /* M = Kc' on the support (dense, a x a), G_aa */
         for (long k = 0; k < a * a; k++) M[k] = 0.0;
@@ -1422,14 +1451,21 @@ static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy
         j++;
     }
     for (long k = 0; k < m; k++) b->pos[b->dof[k]] = -1;
-    const int mi = (int)m, ldi = (int)ld, one = 1;
-    const double d1 = 1.0, d0 = 0.0;
-    if (m > 0) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, rho, &one, &d0, q, &one); /* q = G rho */
-    /* G U, column by column (G symmetric: its column c is row c) */
-    for (long k = 0; k < pt; k++) {
+    st = shared_gemv(b, m, m, 1.0, b->G, ld, rho, 0.0, q); /* q = G rho */
+    if (st) return st;
+    /* G U, column by column (G symmetric: its column c is row c); shared
+     * out by columns on the ranks of a replicated bulk */
+    const int split = b->rsize > 1 && pt * m >= SHARE_MIN;
+    const long k0 = split ? pt * b->rrank / b->rsize : 0, k1 = split ? pt * (b->rrank + 1) / b->rsize : pt;
+    for (long k = k0; k < k1; k++) {
         double *gu = GU + k * m;
         for (long r = 0; r < m; r++) gu[r] = 0.0;
         for (long e = start[2 * k]; e < start[2 * k + 1]; e++) axpy(m, val[e], b->G + idx[e] * ld, gu);
+    }
+    if (split) {
+        for (int r = 0; r < b->rsize; r++) b->rcount[r] = m * (pt * (r + 1) / b->rsize - pt * r / b->rsize);
+        st = ffc__mpi_allgather(b->rcomm, GU, b->rcount);
+        if (st) return st;
     }
     /* S = I + V^T G U, wv = -V^T q */
     for (long k = 0; k < pt; k++) {
@@ -1440,11 +1476,8 @@ static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy
     if (st) return st;
     /* dy = -q - G U w;  dz = -rho - U (V^T dy) */
     for (long k = 0; k < m; k++) dy[k] = -q[k];
-    if (pt > 0) {
-        const int pi = (int)pt;
-        const double mone = -1.0;
-        dgemv_("N", &mi, &pi, &mone, GU, &mi, wv, &one, &d1, dy, &one);
-    }
+    st = shared_gemv(b, m, pt, -1.0, GU, m, wv, 1.0, dy);
+    if (st) return st;
     for (long k = 0; k < m; k++) dz[k] = -rho[k];
     for (long k = 0; k < pt; k++) vd[k] = list_dot(start, idx, val, 2 * k + 1, dy);
     for (long k = 0; k < pt; k++)
@@ -1452,12 +1485,7 @@ static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy
     /* G dz = -q - (G U) (V^T dy), from the products at hand (G U is m x p,
      * G m x m) */
     for (long k = 0; k < m; k++) gdz[k] = -q[k];
-    if (pt > 0) {
-        const int pi = (int)pt;
-        const double mone = -1.0;
-        dgemv_("N", &mi, &pi, &mone, GU, &mi, vd, &one, &d1, gdz, &one);
-    }
-    return FFC_OK;
+    return shared_gemv(b, m, pt, -1.0, GU, m, vd, 1.0, gdz);
 }
 
 /* Formulation (the closing solve kept).  A call ends at u' = u + d0 - x,
@@ -1697,7 +1725,8 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
         nal = na;
         /* the step of y that the step of z makes: G dz (= dy to the accuracy
          * of the dense solve; the ranked direction made it) */
-        if (m && tmode != FFC_TANGENT_RANKED) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, dz, &one, &d0s, gdz, &one);
+        if (tmode != FFC_TANGENT_RANKED) st = shared_gemv(b, m, m, 1.0, b->G, b->ld, dz, 0.0, gdz);
+        if (st) break;
         double g0 = dot(m, rho, gdz);
         if (!(g0 < 0) && tmode == FFC_TANGENT_CONSISTENT) {
             /* the consistent tangent is indefinite here: the material one's direction */
@@ -1707,11 +1736,13 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
             if (st) break;
             if (na > info->support) info->support = na;
             info->fallbacks++;
-            if (m) dgemv_("N", &mi, &mi, &d1, b->G, &ldi, dz, &one, &d0s, gdz, &one);
+            st = shared_gemv(b, m, m, 1.0, b->G, b->ld, dz, 0.0, gdz);
+            if (st) break;
             g0 = dot(m, rho, gdz);
         }
         if (!(g0 < 0)) { status = FFC_INFO_NODESCENT; break; }
-        if (m && nrb) dgemv_("N", &nri, &mi, &d1, b->H, &nri, dz, &one, &d0s, hdz, &one);
+        st = shared_gemv(b, nrb, m, 1.0, b->H, nrb, dz, 0.0, hdz);
+        if (st) break;
         /* rho at z + a dz into rt; its g = rt . gdz; a force that reaches
          * a dof outside C: it joins C and the iteration restarts */
 #define TRIAL(a_)                                                                                                  \
