@@ -110,7 +110,7 @@ bench-search: $(B)/bench_search
 	@sh tests/bench/bench_search.sh
 bench-contact: all
 	@sh tests/bench/bench_contact.sh $(MODE)
-# 1 against N ranks (NP, default 2); MODE=full adds ~150k dofs
+# 1 against N ranks (NP, default 2); MODE=full adds ~150k dofs, MODE=large runs that row alone
 bench-mpi: all
 	@sh tests/bench/bench_mpi.sh $(or $(MODE),quick) $(or $(NP),2)
 bench: bench-search bench-contact bench-mpi
