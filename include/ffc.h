@@ -968,7 +968,8 @@ int ffc_mpi_world(int *rank, int *size, int *fcomm);
 int ffc_mpi_allreduce(double v[], long n, int op);
 /* Every rank's triplets (Ti, Tj, Tv)[nt], concatenated in the order of
  * the ranks, into (Oi, Oj, Ov)[cap] on every rank; *total = their count
- * (FFC_ERR_SIZE when cap is smaller: call again with cap >= *total).
+ * (FFC_ERR_CAPACITY when cap is smaller: call again with cap >= *total;
+ * FFC_ERR_SIZE for a negative count or cap, or over 2^31 - 1 in all).
  * Pieces of one matrix assembled on parts of a mesh become its triplets on
  * every rank (ffc_triplets_sum sums them, the same bits everywhere).  A
  * collective call: a bad argument on one rank is every rank's error (the

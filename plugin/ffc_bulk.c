@@ -328,6 +328,8 @@ static int grow(ffc__bulk *b, long m)
     long ld = b->ld ? b->ld + b->ld / 4 : 64;
     if (ld < m) ld = m;
     ld = (ld + 63) / 64 * 64;
+    const long top = (b->mmax + 63) / 64 * 64;   /* (never above the contact dofs' limit, rounded) */
+    if (ld > top) ld = top > m ? top : m;
     double *G = calloc((size_t)ld * ld, sizeof(double));
     long *dof = malloc((size_t)ld * sizeof(long)), *piv = malloc((size_t)ld * sizeof(long));
     double *xc = malloc((size_t)ld * sizeof(double));
@@ -1286,6 +1288,7 @@ static int direction(ffc__bulk *b, long nt, const double rho[], double dy[], dou
         else st = FFC_ERR_MEMORY;
     }
     double *M = b->Mw, *Gaa = b->Gw;
+    st = agree(b, st);   /* (a rank's failure is every rank's before the shared product) */
     if (!st) st = shared_gemv(b, m, m, 1.0, b->G, ld, rho, 0.0, q); /* q = G rho */
     if (!st && a > 0) {
         /* M = Kc' on the support (dense, a x a), G_aa */
@@ -1426,6 +1429,7 @@ static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy
         if (rv) { b->rv = rv; b->rcap = needv; }
         else st = FFC_ERR_MEMORY;
     }
+    st = agree(b, st);   /* (a rank's failure is every rank's before the shared products) */
     if (st) {
         for (long k = 0; k < m; k++) b->pos[b->dof[k]] = -1;
         return st;

@@ -12,7 +12,7 @@ static int gather_one(long nt, const long Ti[], const long Tj[], const double Tv
                       double Ov[], long *total)
 {
     *total = nt;
-    if (nt > cap) return FFC_ERR_SIZE;
+    if (nt > cap) return FFC_ERR_CAPACITY;
     if (nt > 0) {
         memcpy(Oi, Ti, (size_t)nt * sizeof *Oi);
         memcpy(Oj, Tj, (size_t)nt * sizeof *Oj);
@@ -95,7 +95,7 @@ int ffc_mpi_gather_triplets(long nt, const long Ti[], const long Tj[], const dou
         else { ci[r] = (int)cnt[r]; dsp[r] = (int)all; all += cnt[r]; }
     }
     if (!st) *total = all;
-    if (!st && all > cap) st = FFC_ERR_SIZE;
+    if (!st && all > cap) st = FFC_ERR_CAPACITY;
     st = agree_status(st);
     if (!st && (MPI_Allgatherv(Ti, (int)nt, MPI_LONG, Oi, ci, dsp, MPI_LONG, MPI_COMM_WORLD) != MPI_SUCCESS ||
                 MPI_Allgatherv(Tj, (int)nt, MPI_LONG, Oj, ci, dsp, MPI_LONG, MPI_COMM_WORLD) != MPI_SUCCESS ||

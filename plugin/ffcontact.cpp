@@ -446,12 +446,12 @@ long matrix_triplets(const char *fn, const char *arg, Matrice_Creuse<double> *K,
 // to K: duplicates summed in C (the nodal law repeats entries many times);
 // lower = 1 keeps the lower triangle, as FreeFEM's half matrices do.
 void triplets_to_matrix(const char *fn, long n, long nt, const long *Ti, const long *Tj, const double *Tv, bool lower,
-                        Matrice_Creuse<double> *K)
+                        Matrice_Creuse<double> *K, const char *what = "the contact tangent")
 {
     std::vector<long> Ci(nt > 0 ? nt : 1), Cj(nt > 0 ? nt : 1), rp(n + 1), wk(n);
     std::vector<double> Cv(nt > 0 ? nt : 1);
     const long nz = ffc_triplets_sum(n, nt, Ti, Tj, Tv, Ci.data(), Cj.data(), Cv.data(), rp.data(), wk.data());
-    if (nz < 0) fail(fn, std::string("the contact tangent: ") + ffc_strerror((int)nz));
+    if (nz < 0) fail(fn, std::string(what) + ": " + ffc_strerror((int)nz));
     long nk = 0;   // (the entries kept: all, or the lower triangle's)
     for (long t = 0; t < nz; t++)
         if (!lower || Ci[t] >= Cj[t]) { Ci[nk] = Ci[t]; Cj[nk] = Cj[t]; Cv[nk] = Cv[t]; nk++; }
@@ -464,7 +464,8 @@ void triplets_to_matrix(const char *fn, long n, long nt, const long *Ti, const l
 namespace {
 // ffcRankSum(A): the matrix A replaced on every rank by the sum of every
 // rank's A (pieces of one matrix assembled on parts of the mesh; every
-// rank passes an n x n matrix of the same n). Returns its entries.
+// rank calls it with an n x n matrix of the same n; a half-stored A comes
+// back stored whole). Returns the sum's entries.
 long ffcRankSumMatrix(Matrice_Creuse<double> *const &A)
 {
     const char *fn = "ffcRankSum";
@@ -483,14 +484,15 @@ long ffcRankSumMatrix(Matrice_Creuse<double> *const &A)
     }
     long total = 0;
     st = ffc_mpi_gather_triplets((long)Tv.size(), Ti.data(), Tj.data(), Tv.data(), 0, nullptr, nullptr, nullptr, &total);
-    if (st && st != FFC_ERR_SIZE) fail(fn, ffc_strerror(st));
+    if (st && st != FFC_ERR_CAPACITY) fail(fn, ffc_strerror(st));
     std::vector<long> Oi(total > 0 ? total : 1), Oj(total > 0 ? total : 1);
     std::vector<double> Ov(total > 0 ? total : 1);
     st = ffc_mpi_gather_triplets((long)Tv.size(), Ti.data(), Tj.data(), Tv.data(), total, Oi.data(), Oj.data(),
                                  Ov.data(), &total);
     if (st) fail(fn, ffc_strerror(st));
-    triplets_to_matrix(fn, n, total, Oi.data(), Oj.data(), Ov.data(), false, A);
-    return total;
+    triplets_to_matrix(fn, n, total, Oi.data(), Oj.data(), Ov.data(), false, A, "the ranks' sum");
+    HashMatrix<int, double> *h = dynamic_cast<HashMatrix<int, double> *>((MatriceCreuse<double> *)A->A);
+    return h ? (long)h->nnz : 0;
 }
 } // namespace
 

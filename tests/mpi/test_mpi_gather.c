@@ -34,7 +34,7 @@ static void test_gathered_in_rank_order(void **state)
     double Tv[12];
     const long nt = piece(rank, Ti, Tj, Tv);
     long total = -1;
-    assert_int_equal(ffc_mpi_gather_triplets(nt, Ti, Tj, Tv, 0, NULL, NULL, NULL, &total), FFC_ERR_SIZE);
+    assert_int_equal(ffc_mpi_gather_triplets(nt, Ti, Tj, Tv, 0, NULL, NULL, NULL, &total), FFC_ERR_CAPACITY);
     assert_int_equal(total, 12L * size);
     long *Oi = malloc((size_t)total * sizeof *Oi), *Oj = malloc((size_t)total * sizeof *Oj);
     double *Ov = malloc((size_t)total * sizeof *Ov);
@@ -73,20 +73,20 @@ static void test_bad_argument_on_one_rank(void **state)
     (void)state;
     int rank;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    long Ti[12], Tj[12], Oi[48], Oj[48], total = -1;
-    double Tv[12], Ov[48];
+    long Ti[12], Tj[12], Oi[96], Oj[96], total = -1;   /* (up to 8 ranks) */
+    double Tv[12], Ov[96];
     const long nt = piece(rank, Ti, Tj, Tv);
     /* rank 1 passes no values: both ranks get FFC_ERR_NULL */
     const double *v = rank == 1 ? NULL : Tv;
-    assert_int_equal(ffc_mpi_gather_triplets(nt, Ti, Tj, v, 48, Oi, Oj, Ov, &total), FFC_ERR_NULL);
+    assert_int_equal(ffc_mpi_gather_triplets(nt, Ti, Tj, v, 96, Oi, Oj, Ov, &total), FFC_ERR_NULL);
     /* rank 0 a negative count, rank 1 no values: the most negative status */
     const long m = rank == 0 ? -1 : nt;
     const int want = FFC_ERR_NULL < FFC_ERR_SIZE ? FFC_ERR_NULL : FFC_ERR_SIZE;
-    assert_int_equal(ffc_mpi_gather_triplets(m, Ti, Tj, v, 48, Oi, Oj, Ov, &total), want);
+    assert_int_equal(ffc_mpi_gather_triplets(m, Ti, Tj, v, 96, Oi, Oj, Ov, &total), want);
     /* rank 0's capacity too small: every rank is told */
-    assert_int_equal(ffc_mpi_gather_triplets(nt, Ti, Tj, Tv, rank == 0 ? 4 : 48, Oi, Oj, Ov, &total), FFC_ERR_SIZE);
+    assert_int_equal(ffc_mpi_gather_triplets(nt, Ti, Tj, Tv, rank == 0 ? 4 : 96, Oi, Oj, Ov, &total), FFC_ERR_CAPACITY);
     /* and then it works */
-    assert_int_equal(ffc_mpi_gather_triplets(nt, Ti, Tj, Tv, 48, Oi, Oj, Ov, &total), FFC_OK);
+    assert_int_equal(ffc_mpi_gather_triplets(nt, Ti, Tj, Tv, 96, Oi, Oj, Ov, &total), FFC_OK);
 }
 
 int main(int argc, char **argv)
