@@ -615,6 +615,16 @@ static int columns_on_rows(ffc__bulk *b, long nc, const long d[], const unsigned
     return FFC_OK;
 }
 
+/* On the ranks of a replicated bulk: this rank's contiguous share
+ * [*lo, *hi) of n items, and every rank's count of values (unit per item)
+ * in b->rcount, in rank order (ffc__mpi_allgather's layout) */
+static void rank_share(ffc__bulk *b, long n, long unit, long *lo, long *hi)
+{
+    for (int r = 0; r < b->rsize; r++) b->rcount[r] = (n * (r + 1) / b->rsize - n * r / b->rsize) * unit;
+    *lo = n * b->rrank / b->rsize;
+    *hi = n * (b->rrank + 1) / b->rsize;
+}
+
 /* The compliance columns of the dofs nd[nnew]: their values on the rows
  * read (C, the new dofs, R: each once), in pieces of at most INV_ENTRIES
  * values, each column put into the zero vector x on those rows only,
@@ -676,11 +686,10 @@ static int add_columns_timed(ffc__bulk *b, long nnew, const long nd[])
         const long nc = nnew - k0 < chunk ? nnew - k0 : chunk;
         if (b->mp) st = ffc__mumps_inverse(b->mp, nc, d + k0, nrows, rows, V);
         else if (b->rsize > 1) {
-            long *count = b->rcount;
-            for (int r = 0; r < b->rsize; r++) count[r] = (nc * (r + 1) / b->rsize - nc * r / b->rsize) * nrows;
-            const long lo = nc * b->rrank / b->rsize, hi = nc * (b->rrank + 1) / b->rsize;
+            long lo, hi;
+            rank_share(b, nc, nrows, &lo, &hi);
             st = agree(b, columns_on_rows(b, hi - lo, d + k0 + lo, bw, nrows, rows, V + lo * nrows));
-            if (!st) st = ffc__mpi_allgather(b->rcomm, V, count);
+            if (!st) st = ffc__mpi_allgather(b->rcomm, V, b->rcount);
         } else
             st = columns_on_rows(b, nc, d + k0, bw, nrows, rows, V);
         if (b->mp && !st) b->info.backsolves += nc;
@@ -1244,8 +1253,8 @@ static int shared_gemv(ffc__bulk *b, long n, long k, double alpha, const double 
         dgemv_("N", &ni, &ki, &alpha, A, &ldai, x, &one, &beta, y, &one);
         return FFC_OK;
     }
-    for (int r = 0; r < b->rsize; r++) b->rcount[r] = n * (r + 1) / b->rsize - n * r / b->rsize;
-    const long lo = n * b->rrank / b->rsize, hi = n * (b->rrank + 1) / b->rsize;
+    long lo, hi;
+    rank_share(b, n, 1, &lo, &hi);
     const int ni = (int)(hi - lo);
     if (ni > 0) dgemv_("N", &ni, &ki, &alpha, A + lo, &ldai, x, &one, &beta, y + lo, &one);
     return ffc__mpi_allgather(b->rcomm, y, b->rcount);
@@ -1460,17 +1469,14 @@ static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy
     /* G U, column by column (G symmetric: its column c is row c); shared
      * out by columns on the ranks of a replicated bulk */
     const int split = b->rsize > 1 && pt * m >= SHARE_MIN;
-    const long k0 = split ? pt * b->rrank / b->rsize : 0, k1 = split ? pt * (b->rrank + 1) / b->rsize : pt;
+    long k0 = 0, k1 = pt;
+    if (split) rank_share(b, pt, m, &k0, &k1);
     for (long k = k0; k < k1; k++) {
         double *gu = GU + k * m;
         for (long r = 0; r < m; r++) gu[r] = 0.0;
         for (long e = start[2 * k]; e < start[2 * k + 1]; e++) axpy(m, val[e], b->G + idx[e] * ld, gu);
     }
-    if (split) {
-        for (int r = 0; r < b->rsize; r++) b->rcount[r] = m * (pt * (r + 1) / b->rsize - pt * r / b->rsize);
-        st = ffc__mpi_allgather(b->rcomm, GU, b->rcount);
-        if (st) return st;
-    }
+    if (split && (st = ffc__mpi_allgather(b->rcomm, GU, b->rcount))) return st;
     /* S = I + V^T G U, wv = -V^T q */
     for (long k = 0; k < pt; k++) {
         wv[k] = -list_dot(start, idx, val, 2 * k + 1, q);

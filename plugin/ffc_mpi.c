@@ -7,6 +7,17 @@
 #include "ffc.h"
 #include "ffc_internal.h"
 
+/* ffc_mpi_gather_triplets's arguments on this rank (*total = 0 first) */
+static int gather_args(long nt, const long Ti[], const long Tj[], const double Tv[], long cap, const long Oi[],
+                       const long Oj[], const double Ov[], long *total)
+{
+    if (!total) return FFC_ERR_NULL;
+    *total = 0;
+    if (nt < 0 || cap < 0) return FFC_ERR_SIZE;
+    if ((nt > 0 && (!Ti || !Tj || !Tv)) || (cap > 0 && (!Oi || !Oj || !Ov))) return FFC_ERR_NULL;
+    return FFC_OK;
+}
+
 /* one rank: the triplets copied (ffc_mpi_gather_triplets) */
 static int gather_one(long nt, const long Ti[], const long Tj[], const double Tv[], long cap, long Oi[], long Oj[],
                       double Ov[], long *total)
@@ -75,11 +86,8 @@ static int agree_status(int st)
 int ffc_mpi_gather_triplets(long nt, const long Ti[], const long Tj[], const double Tv[], long cap, long Oi[],
                             long Oj[], double Ov[], long *total)
 {
-    int st = FFC_OK;
-    if (!total) st = FFC_ERR_NULL;
-    else if (nt < 0 || nt > 2147483647L || cap < 0) st = FFC_ERR_SIZE;
-    else if ((nt > 0 && (!Ti || !Tj || !Tv)) || (cap > 0 && (!Oi || !Oj || !Ov))) st = FFC_ERR_NULL;
-    if (total) *total = 0;
+    int st = gather_args(nt, Ti, Tj, Tv, cap, Oi, Oj, Ov, total);
+    if (!st && nt > 2147483647L) st = FFC_ERR_SIZE;   /* (MPI's counts are int) */
     if ((st = agree_status(st))) return st;
     if (!running()) return gather_one(nt, Ti, Tj, Tv, cap, Oi, Oj, Ov, total);
     int size = 1;
@@ -173,11 +181,8 @@ int ffc_mpi_allreduce(double v[], long n, int op)
 int ffc_mpi_gather_triplets(long nt, const long Ti[], const long Tj[], const double Tv[], long cap, long Oi[],
                             long Oj[], double Ov[], long *total)
 {
-    if (!total) return FFC_ERR_NULL;
-    *total = 0;
-    if (nt < 0 || cap < 0) return FFC_ERR_SIZE;
-    if ((nt > 0 && (!Ti || !Tj || !Tv)) || (cap > 0 && (!Oi || !Oj || !Ov))) return FFC_ERR_NULL;
-    return gather_one(nt, Ti, Tj, Tv, cap, Oi, Oj, Ov, total);
+    const int st = gather_args(nt, Ti, Tj, Tv, cap, Oi, Oj, Ov, total);
+    return st ? st : gather_one(nt, Ti, Tj, Tv, cap, Oi, Oj, Ov, total);
 }
 
 int ffc_mpi_barrier(void) { return FFC_OK; }

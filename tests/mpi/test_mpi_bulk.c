@@ -434,8 +434,8 @@ static void test_bad_engine(void **state)
     ffc_scene_free(s);
 }
 
-/* ffc_mpi_gather_triplets: a matrix's pieces gathered on every rank */
-/* rank r's piece: rows 3r .. 3r + 2 of a chain matrix on n = 3 size + 1
+/* ffc_mpi_gather_triplets: a matrix's pieces gathered on every rank.
+ * Rank r's piece: rows 3r .. 3r + 2 of a chain matrix on n = 3 size + 1
  * dofs, the shared dof 3r + 3 (the next piece's first) on both pieces */
 static long piece(int r, long Ti[], long Tj[], double Tv[])
 {
