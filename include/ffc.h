@@ -1301,6 +1301,24 @@ int ffc_reduced_solve(long n, long ld, long m, const long dof[], const double G[
 long ffc_triplets_sum(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long Ci[],
                       long Cj[], double Cv[], long rp[], long w[]);
 
+/* ------------------------------------------------ linear elasticity */
+/* The stiffness matrix of isotropic linear elasticity on linear
+ * tetrahedra: int lambda div u div v + 2 mu eps(u) : eps(v), for the
+ * displacement field [P1, P1, P1] whose dof 3 i + c is component c of
+ * vertex i (nv vertices X[3 nv]; nt tetrahedra T[4 nt]; Lame's lambda
+ * lam[nt] and mu mu[nt], constant per tetrahedron).  Its distinct entries
+ * go to (Ki, Kj, Kv)[cap], *nnz of them: row by row (ascending), columns
+ * ascending within a row, both triangles (the matrix is symmetric); the
+ * count needed is 9 x (vertex pairs that share a tetrahedron, each vertex
+ * with itself included), *nnz with FFC_ERR_CAPACITY.  FFC_ERR_INDEX for a
+ * vertex index outside [0, nv), FFC_ERR_NONFINITE for a coordinate (*bad =
+ * the vertex) or a Lame constant (*bad = the tetrahedron) that is NaN or
+ * Inf, FFC_ERR_DEGENERATE for a tetrahedron of zero volume (|det J| <=
+ * 1e-13 |e1| |e2| |e3|, J = [e1 e2 e3] its edges from the first vertex;
+ * *bad = it). */
+int ffc_elastic_p1(long nv, const double X[], long nt, const long T[], const double lam[], const double mu[],
+                   long cap, long Ki[], long Kj[], double Kv[], long *nnz, long *bad);
+
 /* ------------------------------------------------ mass redistribution */
 /* The interpolation T (n x n) of a redistributed mass M_red = T' M T for
  * contact dynamics: row i is e_i for a dof off the contact surfaces

@@ -1497,6 +1497,56 @@ long massSpread(Matrice_Creuse<double> *const &M, KN<double> *const &spread, Mat
 // factorizes it once (CHOLMOD, in C) at its first call. Returns the dofs.
 basicAC_F0::name_and_type bulk_names[] = {{"maxContactDofs", &typeid(long)}};
 
+// ffcElastic(C, K, lame1, lame2): K = the stiffness of isotropic linear
+// elasticity on the scene's mesh, [P1,P1,P1] (ffc_elastic_p1: what the
+// varf  int3d(Th)(lame1 div u div v + 2 lame2 eps(u) : eps(v))  gives,
+// assembled in C), with Lame's constants per tetrahedron (P0 arrays of
+// the scene's mesh). Returns the matrix's entries.
+long sceneElastic(const Named &, FFScene *const &C, Matrice_Creuse<double> *const &K, KN<double> *const &l1,
+                  KN<double> *const &l2)
+{
+    const char *fn = "ffcElastic";
+    SceneData &d = need_scene(fn, C);
+    if (d.order != 1) fail(fn, "argument 'C': a scene of order 2 (ffcElastic assembles [P1,P1,P1]; use a varf)");
+    if (!K) fail(fn, "argument 'K': matrix is not defined");
+    const char *arg[2] = {"lame1", "lame2"};
+    KN<double> *l[2] = {l1, l2};
+    for (int i = 0; i < 2; i++) {
+        if (!l[i]) fail(fn, std::string("argument '") + arg[i] + "': array is not defined");
+        if (l[i]->N() != d.m.nt) {
+            std::ostringstream s;
+            s << "argument '" << arg[i] << "': size " << l[i]->N() << ", expected " << d.m.nt
+              << " (one value per tetrahedron: the coefficients of a P0 function)";
+            fail(fn, s.str());
+        }
+        need_finite(fn, arg[i], l[i]);
+    }
+    std::vector<double> lam(d.m.nt), mu(d.m.nt);
+    for (long t = 0; t < d.m.nt; t++) { lam[t] = (*l1)[t]; mu[t] = (*l2)[t]; }
+    long nnz = 0, bad = -1;
+    int st = ffc_elastic_p1(d.m.nv, d.m.X.data(), d.m.nt, d.m.T.data(), lam.data(), mu.data(), 0, nullptr, nullptr,
+                            nullptr, &nnz, &bad);
+    std::vector<long> Ki, Kj;
+    std::vector<double> Kv;
+    if (st == FFC_ERR_CAPACITY) {
+        Ki.resize(nnz); Kj.resize(nnz); Kv.resize(nnz);
+        st = ffc_elastic_p1(d.m.nv, d.m.X.data(), d.m.nt, d.m.T.data(), lam.data(), mu.data(), nnz, Ki.data(),
+                            Kj.data(), Kv.data(), &nnz, &bad);
+    }
+    if (st == FFC_ERR_DEGENERATE) {
+        std::ostringstream s;
+        s << "argument 'C': tetrahedron " << bad << " of the scene's mesh has no volume";
+        fail(fn, s.str());
+    }
+    if (st) scene_error(fn, st, bad, "the elastic stiffness");
+    const long n = 3 * d.m.nv;
+    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, 0, 0);
+    h->set(n, n, 0, (size_t)nnz, Ki.data(), Kj.data(), Kv.data(), 0);   // (distinct entries: no lookups)
+    K->A.master(h);
+    K->typemat = 0;
+    return nnz;
+}
+
 long sceneBulk(const Named &nm, FFScene *const &C, Matrice_Creuse<double> *const &K)
 {
     const char *fn = "ffcBulk";
@@ -1896,6 +1946,7 @@ void init_scene()
     Global.Add("ffcFacetSize", "(", named<double, S>("ffcFacetSize", pair_only_names, 1, sceneFacetSize));
     typedef Matrice_Creuse<double> *M;
     Global.Add("ffcBulk", "(", named<long, S, M>("ffcBulk", bulk_names, 1, sceneBulk));
+    Global.Add("ffcElastic", "(", named<long, S, M, V, V>("ffcElastic", nullptr, 0, sceneElastic));
     Global.Add("ffcSolve", "(", named<long, S, M, V, V>("ffcSolve", nullptr, 0, sceneSolve));
     Global.Add("ffcNTSSolve", "(", named<long, S, V, V, V, V, V>("ffcNTSSolve", nullptr, 0, sceneNTSSolve));
     Global.Add("ffcNewton", "(", named<long, S, V, V, V>("ffcNewton", newton_names, 11, sceneNewton));

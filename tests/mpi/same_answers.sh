@@ -25,8 +25,13 @@ check() {   # check <name> <case> "<fields>" <options...>
     sh scripts/ff -np "$np" "scripts/$case.edp" "$@" -out "$dir/$name-$np" > "$dir/$name-$np.log" 2>&1 \
         || { echo "FAIL $name: $np ranks (exit $?)"; why "$dir/$name-$np.log"; fail=1; return; }
     r=$(val "$dir/$name-$np.json" ranks)
-    case "$*" in *QUADRATIC*) ;;   # P1 (every case here but P2's): each rank assembles its part
-        *) grep -q '"bulk_assembly": "by rank"' "$dir/$name-$np.json" || { echo "FAIL $name: not assembled by rank"; fail=1; } ;;
+    # P1 (every case here but P2's): small strain, the stiffness in C,
+    # whole on every rank; finite deformation and FreeFEM's varf
+    # (-assembly varf), each rank its part of the mesh
+    case "$*" in
+        *QUADRATIC*) ;;
+        *-finite*|*varf*) grep -q '"bulk_assembly": "by rank"' "$dir/$name-$np.json" || { echo "FAIL $name: not assembled by rank"; fail=1; } ;;
+        *) grep -q '"bulk_assembly": "in C"' "$dir/$name-$np.json" || { echo "FAIL $name: not assembled in C"; fail=1; } ;;
     esac
     [ "$r" = "$np" ] || { echo "FAIL $name: the JSON of $np ranks says ranks = $r"; fail=1; }
     for f in $fields; do
@@ -47,6 +52,8 @@ check hertz-mortar hertz "$H" -hc 0.1 -vtk 0 -method mortar
 # (a support of 384 contact dofs: the condensed Newton's dense LU shared
 # over the ranks, ScaLAPACK)
 check hertz-025 hertz "$H" -hc 0.025 -vtk 0
+# the stiffness by FreeFEM's varf, each rank its part, summed (ffcRankSum)
+check hertz-varf hertz "$H" -hc 0.1 -vtk 0 -assembly varf
 # the bulk factorized by parallel MUMPS instead of CHOLMOD on every rank
 check hertz-mumps hertz "$H" -hc 0.1 -vtk 0 -engine mumps
 # the full-system path: K + Kc factorized at each Newton iteration
