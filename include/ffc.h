@@ -1319,6 +1319,16 @@ long ffc_triplets_sum(long n, long nt, const long Ti[], const long Tj[], const d
 int ffc_elastic_p1(long nv, const double X[], long nt, const long T[], const double lam[], const double mu[],
                    long cap, long Ki[], long Kj[], double Kv[], long *nnz, long *bad);
 
+/* The same on quadratic tetrahedra ([P2, P2, P2], straight-sided: the
+ * geometry from the vertices X, T): nn nodes, node[10 nt] each
+ * tetrahedron's nodes in FreeFEM's order (ffc_p2_number: the vertices,
+ * then the edges 01 02 03 12 13 23), dof 3 i + c of node i; the count
+ * needed is 9 x (node pairs that share a tetrahedron, each node with
+ * itself); FFC_ERR_INDEX also for a node outside [0, nn). */
+int ffc_elastic_p2(long nv, const double X[], long nt, const long T[], long nn, const long node[],
+                   const double lam[], const double mu[], long cap, long Ki[], long Kj[], double Kv[], long *nnz,
+                   long *bad);
+
 /* ------------------------------------------------ mass redistribution */
 /* The interpolation T (n x n) of a redistributed mass M_red = T' M T for
  * contact dynamics: row i is e_i for a dof off the contact surfaces

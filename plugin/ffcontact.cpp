@@ -1498,8 +1498,9 @@ long massSpread(Matrice_Creuse<double> *const &M, KN<double> *const &spread, Mat
 basicAC_F0::name_and_type bulk_names[] = {{"maxContactDofs", &typeid(long)}};
 
 // ffcElastic(C, K, lame1, lame2): K = the stiffness of isotropic linear
-// elasticity on the scene's mesh, [P1,P1,P1] (ffc_elastic_p1: what the
-// varf  int3d(Th)(lame1 div u div v + 2 lame2 eps(u) : eps(v))  gives,
+// elasticity on the scene's mesh, [P1,P1,P1] or, in a scene of order 2,
+// [P2,P2,P2] (ffc_elastic_p1, ffc_elastic_p2: what the varf
+// int3d(Th)(lame1 div u div v + 2 lame2 eps(u) : eps(v))  gives,
 // assembled in C), with Lame's constants per tetrahedron (P0 arrays of
 // the scene's mesh). Returns the matrix's entries.
 long sceneElastic(const Named &, FFScene *const &C, Matrice_Creuse<double> *const &K, KN<double> *const &l1,
@@ -1507,7 +1508,6 @@ long sceneElastic(const Named &, FFScene *const &C, Matrice_Creuse<double> *cons
 {
     const char *fn = "ffcElastic";
     SceneData &d = need_scene(fn, C);
-    if (d.order != 1) fail(fn, "argument 'C': a scene of order 2 (ffcElastic assembles [P1,P1,P1]; use a varf)");
     if (!K) fail(fn, "argument 'K': matrix is not defined");
     const char *arg[2] = {"lame1", "lame2"};
     KN<double> *l[2] = {l1, l2};
@@ -1524,14 +1524,18 @@ long sceneElastic(const Named &, FFScene *const &C, Matrice_Creuse<double> *cons
     std::vector<double> lam(d.m.nt), mu(d.m.nt);
     for (long t = 0; t < d.m.nt; t++) { lam[t] = (*l1)[t]; mu[t] = (*l2)[t]; }
     long nnz = 0, bad = -1;
-    int st = ffc_elastic_p1(d.m.nv, d.m.X.data(), d.m.nt, d.m.T.data(), lam.data(), mu.data(), 0, nullptr, nullptr,
-                            nullptr, &nnz, &bad);
+    int st = FFC_OK;
     std::vector<long> Ki, Kj;
     std::vector<double> Kv;
-    if (st == FFC_ERR_CAPACITY) {
-        Ki.resize(nnz); Kj.resize(nnz); Kv.resize(nnz);
-        st = ffc_elastic_p1(d.m.nv, d.m.X.data(), d.m.nt, d.m.T.data(), lam.data(), mu.data(), nnz, Ki.data(),
-                            Kj.data(), Kv.data(), &nnz, &bad);
+    for (int pass = 0; pass < 2; pass++) {   // (the count, then the entries)
+        const long cap = pass ? nnz : 0;
+        if (pass) { Ki.resize(nnz); Kj.resize(nnz); Kv.resize(nnz); }
+        const int s2 = d.order == 2
+            ? ffc_elastic_p2(d.m.nv, d.m.X.data(), d.m.nt, d.m.T.data(), d.nn, d.p2.node.data(), lam.data(), mu.data(),
+                             cap, Ki.data(), Kj.data(), Kv.data(), &nnz, &bad)
+            : ffc_elastic_p1(d.m.nv, d.m.X.data(), d.m.nt, d.m.T.data(), lam.data(), mu.data(), cap, Ki.data(),
+                             Kj.data(), Kv.data(), &nnz, &bad);
+        if (s2 != FFC_ERR_CAPACITY || pass) { st = s2; break; }
     }
     if (st == FFC_ERR_DEGENERATE) {
         std::ostringstream s;
@@ -1539,7 +1543,7 @@ long sceneElastic(const Named &, FFScene *const &C, Matrice_Creuse<double> *cons
         fail(fn, s.str());
     }
     if (st) scene_error(fn, st, bad, "the elastic stiffness");
-    const long n = 3 * d.m.nv;
+    const long n = 3 * d.nn;
     HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, 0, 0);
     h->set(n, n, 0, (size_t)nnz, Ki.data(), Kj.data(), Kv.data(), 0);   // (distinct entries: no lookups)
     K->A.master(h);

@@ -2,10 +2,12 @@
 # bench_contact.sh: what a contact solve costs against its floor, one core.
 # Each row runs one case study with -floor: the script times, after its
 # solve and in the same process, the floor of its scene (the bulk
-# stiffness assembled once, factorized once by CHOLMOD and solved once).
+# stiffness assembled once by FreeFEM's varf, factorized once by CHOLMOD
+# and solved once) and, where the scene assembles its stiffness in C
+# (small strain, P1), the same floor with that assembly (floor_own_s).
 # Writes results/bench-contact.csv
 #   case,method,path,dofs,contact_dofs,wall_s,floor_s,ratio,factorizations,
-#   newton,uzawa,active_set,step_cuts,peak_mb,err
+#   newton,uzawa,active_set,step_cuts,peak_mb,err,floor_own_s,ratio_own
 # (wall_s: the scene library's time from its start to the JSON, the
 # case's main error: err_p0_fit for Hertz, the largest |c - c_analytic| /
 # c_analytic for Cattaneo-Mindlin, err_plateau for the sliding block,
@@ -15,7 +17,7 @@ cd "$(dirname "$0")/../.." || exit 2
 mkdir -p results/bench
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 out=results/bench-contact.csv
-echo "case,method,path,dofs,contact_dofs,wall_s,floor_s,ratio,factorizations,newton,uzawa,active_set,step_cuts,peak_mb,err" > "$out"
+echo "case,method,path,dofs,contact_dofs,wall_s,floor_s,ratio,factorizations,newton,uzawa,active_set,step_cuts,peak_mb,err,floor_own_s,ratio_own" > "$out"
 num() { sed -n "s/^ *\"$2\": *\([-0-9.eE+]*\),*$/\1/p" "$1" | head -1; }
 # row <name> <script> <method> [options]
 row() {
@@ -36,8 +38,9 @@ row() {
         sliding-stop) err=$(num "$f" err_deceleration) ;;
     esac
     mb=$(sed -n 's/.*Maximum resident set size (kbytes): *\([0-9]*\).*/\1/p' "$log")
-    wall=$(num "$f" time_total); floor=$(num "$f" floor_s)
-    echo "$name,$method,$path,$(num "$f" dofs),$(num "$f" contact_dofs),$wall,$floor,$(echo "$wall $floor" | awk '{printf "%.2f", $1 / $2}'),$(num "$f" factorizations),$(num "$f" newton_iterations),$(num "$f" uzawa_iterations),$(num "$f" active_set_iterations),$(num "$f" step_cuts),$((mb / 1024)),$err" | tee -a "$out"
+    wall=$(num "$f" time_total); floor=$(num "$f" floor_s); own=$(num "$f" floor_own_s)
+    rown=; [ -n "$own" ] && rown=$(echo "$wall $own" | awk '{printf "%.2f", $1 / $2}')
+    echo "$name,$method,$path,$(num "$f" dofs),$(num "$f" contact_dofs),$wall,$floor,$(echo "$wall $floor" | awk '{printf "%.2f", $1 / $2}'),$(num "$f" factorizations),$(num "$f" newton_iterations),$(num "$f" uzawa_iterations),$(num "$f" active_set_iterations),$(num "$f" step_cuts),$((mb / 1024)),$err,$own,$rown" | tee -a "$out"
 }
 for m in al nts; do
     row hertz-p1-hc0.05 hertz $m -hc 0.05 -vtk 0

@@ -1,8 +1,11 @@
-/* test_elastic.c: the linear-elastic stiffness of linear tetrahedra
- * (ffc_elastic_p1) against the continuum: for linear fields u = A x + c
- * and w = B x + d (every P1 field of one tetrahedron is one), U' K W =
- * V (lambda tr A tr B + 2 mu eps(A) : eps(B)); rigid motions in its null
- * space; the pattern, its order and count; capacity and bad input. */
+/* test_elastic.c: the linear-elastic stiffness of linear and quadratic
+ * tetrahedra (ffc_elastic_p1, ffc_elastic_p2) against the continuum: for
+ * linear fields u = A x + c and w = B x + d (every P1 field of one
+ * tetrahedron is one), U' K W = V (lambda tr A tr B + 2 mu eps(A) :
+ * eps(B)); for quadratic fields (every P2 field of one tetrahedron is one)
+ * the integral of products of linear gradients by the exact formula for
+ * products of linear functions; rigid motions in the null space; the
+ * pattern, its order and count; capacity and bad input. */
 #include "ffc_test.h"
 
 /* U[3 nv] of the field A x + c at the vertices X[3 nv] */
@@ -155,11 +158,118 @@ static void test_elastic_capacity_and_errors(void **state)
     for (long e = 0; e < nnz; e++) assert_true(Kv[e] == 0.0);
 }
 
+/* a quadratic field u_r = c_r + A_rj x_j + Q_rjk x_j x_k at x */
+static void quad_field(const double c[3], const double A[3][3], const double Q[3][3][3], const double x[3], double u[3],
+                       double grad[3][3])
+{
+    for (int r = 0; r < 3; r++) {
+        u[r] = c[r];
+        for (int j = 0; j < 3; j++) {
+            u[r] += A[r][j] * x[j];
+            grad[r][j] = A[r][j];
+            for (int k = 0; k < 3; k++) {
+                u[r] += Q[r][j][k] * x[j] * x[k];
+                grad[r][j] += (Q[r][j][k] + Q[r][k][j]) * x[k];
+            }
+        }
+    }
+}
+
+static void random_quad(uint64_t *s, double c[3], double A[3][3], double Q[3][3][3])
+{
+    for (int r = 0; r < 3; r++) {
+        c[r] = test_rand(s, -1, 1);
+        for (int j = 0; j < 3; j++) {
+            A[r][j] = test_rand(s, -1, 1);
+            for (int k = 0; k < 3; k++) Q[r][j][k] = test_rand(s, -1, 1);
+        }
+    }
+}
+
+static void test_elastic_p2_quadratic_fields(void **state)
+{
+    (void)state;
+    uint64_t s = 23;
+    double X[15];
+    long T[8];
+    two_tets(&s, X, T);
+    long node[20], nn = 0, bad = 0;
+    assert_int_equal(ffc_p2_number(2, T, 5, node, &nn), FFC_OK);
+    assert_int_equal(nn, 5 + 9);
+    double X2[3 * 14];
+    assert_int_equal(ffc_p2_positions(2, T, node, X, nn, X2), FFC_OK);
+    const double lam[2] = {2.5, 0.7}, mu[2] = {1.5, 3.0};
+    /* the pattern: the 10 nodes of each tetrahedron with one another, the
+     * face's 6 shared: 2 x 100 - 36 blocks */
+    long nnz = -1;
+    assert_int_equal(ffc_elastic_p2(5, X, 2, T, nn, node, lam, mu, 0, NULL, NULL, NULL, &nnz, &bad), FFC_ERR_CAPACITY);
+    assert_int_equal(nnz, 9 * (2 * 100 - 36));
+    long *Ki = malloc(nnz * sizeof(long)), *Kj = malloc(nnz * sizeof(long));
+    double *Kv = malloc(nnz * sizeof(double));
+    assert_int_equal(ffc_elastic_p2(5, X, 2, T, nn, node, lam, mu, nnz, Ki, Kj, Kv, &nnz, &bad), FFC_OK);
+    for (long e = 1; e < nnz; e++) assert_true(Ki[e - 1] < Ki[e] || (Ki[e - 1] == Ki[e] && Kj[e - 1] < Kj[e]));
+    for (int trial = 0; trial < 10; trial++) {
+        double c[3], A[3][3], Q[3][3][3], d[3], B[3][3], R[3][3][3], U[42], W[42], gu[3][3], gw[3][3];
+        random_quad(&s, c, A, Q);
+        random_quad(&s, d, B, R);
+        for (long i = 0; i < nn; i++) {
+            quad_field(c, A, Q, X2 + 3 * i, U + 3 * i, gu);
+            quad_field(d, B, R, X2 + 3 * i, W + 3 * i, gw);
+        }
+        /* per tetrahedron: the integrand lambda div u div w + 2 mu eps(u) :
+         * eps(w) is a sum of products f g of linear functions, whose
+         * integral is V / 20 (sum_a f_a g_a + sum_a f_a sum_a g_a) over
+         * the vertex values */
+        double want = 0;
+        for (int t = 0; t < 2; t++) {
+            double du[4], dw[4], eu[4][3][3], ew[4][3][3];
+            for (int a = 0; a < 4; a++) {
+                double uu[3], ww[3];
+                quad_field(c, A, Q, X + 3 * T[4 * t + a], uu, gu);
+                quad_field(d, B, R, X + 3 * T[4 * t + a], ww, gw);
+                du[a] = gu[0][0] + gu[1][1] + gu[2][2];
+                dw[a] = gw[0][0] + gw[1][1] + gw[2][2];
+                for (int i = 0; i < 3; i++)
+                    for (int j = 0; j < 3; j++) {
+                        eu[a][i][j] = 0.5 * (gu[i][j] + gu[j][i]);
+                        ew[a][i][j] = 0.5 * (gw[i][j] + gw[j][i]);
+                    }
+            }
+            const double V = tet_volume(X, T + 4 * t);
+            double sdd = 0, sd1 = 0, sd2 = 0;
+            for (int a = 0; a < 4; a++) { sdd += du[a] * dw[a]; sd1 += du[a]; sd2 += dw[a]; }
+            want += lam[t] * V / 20 * (sdd + sd1 * sd2);
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++) {
+                    double see = 0, s1 = 0, s2 = 0;
+                    for (int a = 0; a < 4; a++) { see += eu[a][i][j] * ew[a][i][j]; s1 += eu[a][i][j]; s2 += ew[a][i][j]; }
+                    want += 2 * mu[t] * V / 20 * (see + s1 * s2);
+                }
+        }
+        assert_close(form(nnz, Ki, Kj, Kv, U, W), want, 1e-12 * (1 + fabs(want)) * 50);
+    }
+    /* a rigid rotation: K U = 0 */
+    double c[3] = {0.4, -1.0, 2.0}, Rr[3][3] = {{0, -0.3, 0.2}, {0.3, 0, -0.5}, {-0.2, 0.5, 0}}, Q0[3][3][3] = {{{0}}};
+    double U[42], KU[42] = {0}, g0[3][3], kmax = 0;
+    for (long i = 0; i < nn; i++) quad_field(c, Rr, Q0, X2 + 3 * i, U + 3 * i, g0);
+    for (long e = 0; e < nnz; e++) {
+        KU[Ki[e]] += Kv[e] * U[Kj[e]];
+        kmax = fmax(kmax, fabs(Kv[e]));
+    }
+    for (int i = 0; i < 42; i++) assert_close(KU[i], 0.0, 1e-13 * kmax * 30);
+    /* a node outside [0, nn) */
+    node[13] = nn;
+    assert_int_equal(ffc_elastic_p2(5, X, 2, T, nn, node, lam, mu, nnz, Ki, Kj, Kv, &nnz, &bad), FFC_ERR_INDEX);
+    assert_int_equal(bad, 1);
+    free(Ki); free(Kj); free(Kv);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_elastic_linear_fields),
         cmocka_unit_test(test_elastic_capacity_and_errors),
+        cmocka_unit_test(test_elastic_p2_quadratic_fields),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
