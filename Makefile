@@ -111,8 +111,10 @@ bench-search: $(B)/bench_search
 bench-contact: all
 	@sh tests/bench/bench_contact.sh $(MODE)
 # 1 against N ranks (NP, default 2); MODE=full adds ~150k dofs, MODE=large runs that row alone
-bench-mpi: all
+bench-mpi: all $(B)/bench_pair
 	@sh tests/bench/bench_mpi.sh $(or $(MODE),quick) $(or $(NP),2)
+$(B)/bench_pair: tests/bench/bench_pair.c
+	$(CC) -O2 -std=c11 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Werror $< -lblas -o $@
 bench: bench-search bench-contact bench-mpi
 
 # sanitizers and fuzzing (clang from Debian)

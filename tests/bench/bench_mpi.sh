@@ -12,12 +12,17 @@
 #   (CHOLMOD on every rank, and parallel MUMPS), and finite deformation at
 #   0.025; full: also finite deformation at 0.0125
 #   and small strain at h_c 0.008, about 150k dofs; large: that row alone)
+# First, what N processes at once get from this machine against one
+# (build/bench_pair: a dense product and a streamed update; the ceiling of
+# any N-rank speedup of work of either kind) into
+# results/bench-mpi-machine.txt.
 cd "$(dirname "$0")/../.." || exit 2
 mode=${1:-quick}; np=${2:-2}
 mkdir -p results/bench
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 out=results/bench-mpi.csv
 echo "case,options,ranks,dofs,contact_dofs,wall_s,solve_s,speedup,newton,factor_mb_per_rank,peak_mb_per_rank,F" > "$out"
+build/bench_pair "$np" | tee results/bench-mpi-machine.txt || exit 1
 num() { sed -n "s/^ *\"$2\": *\([-0-9.eE+]*\),*$/\1/p" "$1" | head -1; }
 # each row: the run of median wall time among REPS (3) runs (a run on
 # several ranks is not reproducible to the last bit: MUMPS's parallel sums
