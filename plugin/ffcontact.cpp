@@ -1344,14 +1344,10 @@ double sceneFacetSize(const Named &nm, FFScene *const &C)
     return h;
 }
 
-// ffcAutoPenalty(C, k, lame1, lame2): the automatic normal penalty of pair
-// k (see ffc_scene_auto_penalty) from Lame's constants per tetrahedron
-// (P0 arrays of the scene's mesh: lame1[], lame2[]).
-double sceneAutoPenalty(const Named &, FFScene *const &C, long const &k, KN<double> *const &l1, KN<double> *const &l2)
+// Lame's constants lame1, lame2 per tetrahedron of the scene's mesh (P0
+// arrays): defined, one value per tetrahedron, finite.
+void need_lame(const char *fn, const SceneData &d, KN<double> *l1, KN<double> *l2)
 {
-    const char *fn = "ffcAutoPenalty";
-    SceneData &d = need_scene(fn, C);
-    const int p = need_pair_index(fn, d, k, false, "k");
     const char *arg[2] = {"lame1", "lame2"};
     KN<double> *l[2] = {l1, l2};
     for (int i = 0; i < 2; i++) {
@@ -1364,6 +1360,17 @@ double sceneAutoPenalty(const Named &, FFScene *const &C, long const &k, KN<doub
         }
         need_finite(fn, arg[i], l[i]);
     }
+}
+
+// ffcAutoPenalty(C, k, lame1, lame2): the automatic normal penalty of pair
+// k (see ffc_scene_auto_penalty) from Lame's constants per tetrahedron
+// (P0 arrays of the scene's mesh: lame1[], lame2[]).
+double sceneAutoPenalty(const Named &, FFScene *const &C, long const &k, KN<double> *const &l1, KN<double> *const &l2)
+{
+    const char *fn = "ffcAutoPenalty";
+    SceneData &d = need_scene(fn, C);
+    const int p = need_pair_index(fn, d, k, false, "k");
+    need_lame(fn, d, l1, l2);
     std::vector<double> Ep[2];
     const std::vector<long> *tets[2] = {&d.tetS[p], &d.tetM[p]};
     for (int side = 0; side < 2; side++)
@@ -1509,18 +1516,7 @@ long sceneElastic(const Named &, FFScene *const &C, Matrice_Creuse<double> *cons
     const char *fn = "ffcElastic";
     SceneData &d = need_scene(fn, C);
     if (!K) fail(fn, "argument 'K': matrix is not defined");
-    const char *arg[2] = {"lame1", "lame2"};
-    KN<double> *l[2] = {l1, l2};
-    for (int i = 0; i < 2; i++) {
-        if (!l[i]) fail(fn, std::string("argument '") + arg[i] + "': array is not defined");
-        if (l[i]->N() != d.m.nt) {
-            std::ostringstream s;
-            s << "argument '" << arg[i] << "': size " << l[i]->N() << ", expected " << d.m.nt
-              << " (one value per tetrahedron: the coefficients of a P0 function)";
-            fail(fn, s.str());
-        }
-        need_finite(fn, arg[i], l[i]);
-    }
+    need_lame(fn, d, l1, l2);
     std::vector<double> lam(d.m.nt), mu(d.m.nt);
     for (long t = 0; t < d.m.nt; t++) { lam[t] = (*l1)[t]; mu[t] = (*l2)[t]; }
     long nnz = 0, bad = -1;
