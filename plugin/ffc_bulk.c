@@ -173,12 +173,6 @@ void ffc__bulk_free(ffc__bulk *b)
     free(b);
 }
 
-static int cmp_long(const void *a, const void *b)
-{
-    const long x = *(const long *)a, y = *(const long *)b;
-    return (x > y) - (x < y);
-}
-
 static int cmp_double(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
@@ -668,7 +662,7 @@ static int add_columns_timed(ffc__bulk *b, long nnew, const long nd[])
         memcpy(d, nd, (size_t)nnew * sizeof *d);
         if (pruned) {   /* the new columns in the factor's order; the rows' paths */
             for (long k = 0; k < nnew; k++) d[k] = ((long)b->ipm[nd[k]] << 32) | k;
-            qsort(d, (size_t)nnew, sizeof *d, cmp_long);
+            qsort(d, (size_t)nnew, sizeof *d, ffc__cmp_long);
             for (long k = 0; k < nnew; k++) d[k] = nd[d[k] & 0xffffffffL];
             prune_mark(b, nrows, rows);
             memcpy(bw, b->smark, (size_t)b->L->nsuper);

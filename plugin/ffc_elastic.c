@@ -6,12 +6,7 @@
 #include <string.h>
 
 #include "ffc.h"
-
-static int cmp_long(const void *a, const void *b)
-{
-    const long x = *(const long *)a, y = *(const long *)b;
-    return (x > y) - (x < y);
-}
+#include "ffc_internal.h"
 
 /* the position of j in the ascending list c[n] (present by construction) */
 static long find(const long c[], long n, long j)
@@ -84,7 +79,7 @@ static int assemble(long nv, const double X[], long nt, const long T[], long npe
     long nb = 0; /* distinct blocks; rows compacted in place, fill[i] = row i's count */
     for (long i = 0; i < nn; i++) {
         long *c = adj + rp[i], k = rp[i + 1] - rp[i], u = 0;
-        qsort(c, (size_t)k, sizeof *c, cmp_long);
+        qsort(c, (size_t)k, sizeof *c, ffc__cmp_long);
         for (long e = 0; e < k; e++)
             if (e == 0 || c[e] != c[e - 1]) adj[nb + u++] = c[e];
         fill[i] = u;

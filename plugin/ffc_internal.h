@@ -13,6 +13,13 @@ static inline int ffc__degenerate(double c2, double h2)
     return !(c2 > FFC__DEGEN_REL * FFC__DEGEN_REL * h2 * h2);
 }
 
+/* qsort's comparison of longs, ascending */
+static inline int ffc__cmp_long(const void *a, const void *b)
+{
+    const long x = *(const long *)a, y = *(const long *)b;
+    return (x > y) - (x < y);
+}
+
 static inline double ffc__dot(const double a[3], const double b[3])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];

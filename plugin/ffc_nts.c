@@ -8,12 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int cmp_long(const void *a, const void *b)
-{
-    const long x = *(const long *)a, y = *(const long *)b;
-    return (x > y) - (x < y);
-}
-
 /* index of node v in the sorted nodes[nn] (-1 if absent) */
 static long find_node(long nn, const ffc_nts_node nodes[], long v)
 {
@@ -58,7 +52,7 @@ long ffc_nts_nodes(const ffc_pair *pair, long cap, ffc_nts_node out[], long *nee
     long *v = malloc((size_t)m * sizeof *v);
     if (!v) return FFC_ERR_MEMORY;
     memcpy(v, pair->Fs, (size_t)m * sizeof *v);
-    qsort(v, (size_t)m, sizeof *v, cmp_long);
+    qsort(v, (size_t)m, sizeof *v, ffc__cmp_long);
     long nn = 0;
     for (long k = 0; k < m; k++)
         if (k == 0 || v[k] != v[k - 1]) v[nn++] = v[k];

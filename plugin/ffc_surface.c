@@ -6,19 +6,13 @@
 #include <math.h>
 #include <stdlib.h>
 
-static int cmp_long(const void *a, const void *b)
-{
-    long x = *(const long *)a, y = *(const long *)b;
-    return (x > y) - (x < y);
-}
-
 long ffc_labels_present(long nbe, const long belab[], long cap, long out[])
 {
     if (nbe <= 0 || !belab) return 0;
     long *tmp = malloc((size_t)nbe * sizeof *tmp);
     if (!tmp) return FFC_ERR_MEMORY;
     for (long k = 0; k < nbe; k++) tmp[k] = belab[k];
-    qsort(tmp, (size_t)nbe, sizeof *tmp, cmp_long);
+    qsort(tmp, (size_t)nbe, sizeof *tmp, ffc__cmp_long);
     long nd = 0;
     for (long k = 0; k < nbe; k++) {
         if (k > 0 && tmp[k] == tmp[k - 1]) continue;

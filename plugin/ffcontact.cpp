@@ -441,7 +441,16 @@ long matrix_triplets(const char *fn, const char *arg, Matrice_Creuse<double> *K,
     return h->n;
 }
 
-// The leading dimension of G (argument 'G': ld x ld entries).
+// K = the n x n matrix of the distinct entries (Ci, Cj, Cv)[nk] (half
+// stored, the lower triangle's, with lower = true)
+void set_matrix(long n, long nk, long *Ci, long *Cj, double *Cv, bool lower, Matrice_Creuse<double> *K)
+{
+    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, 0, lower ? 1 : 0);
+    h->set(n, n, lower ? 1 : 0, (size_t)nk, Ci, Cj, Cv, 0);   // (distinct entries: no lookups)
+    K->A.master(h);
+    K->typemat = 0;
+}
+
 // The contact tangent's triplets (Ti, Tj, Tv)[nt] of an n x n matrix handed
 // to K: duplicates summed in C (the nodal law repeats entries many times);
 // lower = 1 keeps the lower triangle, as FreeFEM's half matrices do.
@@ -455,10 +464,7 @@ void triplets_to_matrix(const char *fn, long n, long nt, const long *Ti, const l
     long nk = 0;   // (the entries kept: all, or the lower triangle's)
     for (long t = 0; t < nz; t++)
         if (!lower || Ci[t] >= Cj[t]) { Ci[nk] = Ci[t]; Cj[nk] = Cj[t]; Cv[nk] = Cv[t]; nk++; }
-    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, 0, lower ? 1 : 0);
-    h->set(n, n, lower ? 1 : 0, (size_t)nk, Ci.data(), Cj.data(), Cv.data(), 0);   // (distinct entries: no lookups)
-    K->A.master(h);
-    K->typemat = 0;
+    set_matrix(n, nk, Ci.data(), Cj.data(), Cv.data(), lower, K);
 }
 
 namespace {
@@ -1539,11 +1545,7 @@ long sceneElastic(const Named &, FFScene *const &C, Matrice_Creuse<double> *cons
         fail(fn, s.str());
     }
     if (st) scene_error(fn, st, bad, "the elastic stiffness");
-    const long n = 3 * d.nn;
-    HashMatrix<int, double> *h = new HashMatrix<int, double>((int)n, (int)n, 0, 0);
-    h->set(n, n, 0, (size_t)nnz, Ki.data(), Kj.data(), Kv.data(), 0);   // (distinct entries: no lookups)
-    K->A.master(h);
-    K->typemat = 0;
+    set_matrix(3 * d.nn, nnz, Ki.data(), Kj.data(), Kv.data(), false, K);
     return nnz;
 }
 
