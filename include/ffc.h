@@ -305,8 +305,10 @@ int ffc_mortar_segment(int qdeg, const double Xs[3][3], const double Xm[3][3], l
 typedef struct {
     long sf, mf;       /* slave facet, master facet */
     double xs[2];      /* slave local coordinates of the point (1) */
-    double dv[18];     /* line weight x outward normal velocity per unit change of each dof of the
-                          slave facet's then the master facet's nodes, x, y, z each (1/length) */
+    double dv[FFC_MAXDOF]; /* line weight x outward normal velocity per unit change of each dof of
+                          the slave facet's nn nodes then the master facet's nn, x, y, z each, as a
+                          link's dofs (1/length; the first 3 nodes' entries only: a segment
+                          follows the vertex triangles) */
 } ffc_mortar_edge;
 
 /* Dual (biorthogonal) multiplier basis of a linear slave facet from the
@@ -315,8 +317,10 @@ typedef struct {
  * (standard basis) for n = 0 or a nearly singular coverage. */
 int ffc_dual_basis(long n, const double xi[][2], const double w[], double A[3][3]);
 
-/* Segment links of the slave surface Fs[nfs*3] (positions x[nvs*3])
- * against the tree's master surface (3-node facets): for every slave
+/* Segment links of the slave surface Fs[nfs*nn] (positions x[nvs*3])
+ * against the tree's master surface (nn = the tree's nodes per facet, 3
+ * or 6; the segments of 6-node facets are those of their vertex
+ * triangles, see ffc_mortar_links): for every slave
  * facet, every master facet that faces it (normals opposed) and whose box
  * overlaps the slave facet's box grown by the capture distance of
  * ffc_search gives the points of ffc_mortar_segment, provided one of them
@@ -328,20 +332,26 @@ int ffc_dual_basis(long n, const double xi[][2], const double w[], double A[3][3
 int ffc_mortar_search(const ffc_tree *t, long nfs, const long Fs[], long nvs, const double x[], int qdeg,
                       const ffc_search_opts *o, long cap, ffc_link links[], long *need);
 
-/* The facet pairs of ffc_mortar_search: pairs[2 k] the slave facet,
+/* The facet pairs of ffc_mortar_search (slave facets Fs[nfs*nn], nn the
+ * tree's nodes per facet): pairs[2 k] the slave facet,
  * pairs[2 k + 1] the master facet of pair k (cap pairs at most; *need the
  * count).  Returns the count or an error (FFC_ERR_CAPACITY). */
 int ffc_mortar_pairs(const ffc_tree *t, long nfs, const long Fs[], long nvs, const double x[],
                      const ffc_search_opts *o, long cap, long pairs[], long *need);
 
 /* The segments of given facet pairs at positions x[nvs*3] (slave facets
- * Fs, master facets Fm, 3 nodes each): their links (as ffc_mortar_search,
+ * Fs[nfs*nn], master facets Fm[nfm*nn], nn = 3 or 6 nodes each): their
+ * links (as ffc_mortar_search,
  * whatever the capture distance: the pairs were chosen by it) into
  * links[lcap] (*lneed their count) and, with edges != NULL, their
  * moving-edge points into edges[ecap] (*eneed).  Returns the link count,
  * FFC_ERR_CAPACITY (the needs set) or an error (*lneed = the pair at
- * fault for FFC_ERR_INDEX). */
-int ffc_mortar_links(long nfs, const long Fs[], long nfm, const long Fm[], long nvs, const double x[], int qdeg,
+ * fault for FFC_ERR_INDEX).  6-node facets: the segments are clipped on
+ * the vertex triangles (exact for straight-sided facets, the curved
+ * facet's edges to O(h^2 / R) otherwise), each point xi lies on the
+ * curved slave facet x(xi) = sum_a N_a(xi) x_a and its foot on the curved
+ * master facet; the edge points' velocities have the vertices' dofs only. */
+int ffc_mortar_links(int nn, long nfs, const long Fs[], long nfm, const long Fm[], long nvs, const double x[], int qdeg,
                      long npairs, const long pairs[], long lcap, ffc_link links[], long *lneed, long ecap,
                      ffc_mortar_edge edges[], long *eneed);
 
@@ -443,8 +453,9 @@ typedef struct {
                           contributions cancel them).  A moved direction (a
                           face pushed along the contact plane) keeps its
                           friction, which the support's reaction carries */
-    const double *dual; /* [9 nfs] or NULL: nodal law on linear slave facets with
-                          dual multipliers, Phi_a = sum_b A_ab N_b on slave facet f
+    const double *dual; /* [9 nfs] or NULL: nodal law with dual multipliers (on
+                          6-node facets too: N_b the vertex triangle's linear
+                          shape functions), Phi_a = sum_b A_ab N_b on slave facet f
                           with A = dual + 9 f (row-major, ffc_dual_basis) in place
                           of N_a, in the weighted gap, the pressure and the
                           friction sums alike; NULL: standard N_a */
@@ -575,7 +586,8 @@ int ffc_points(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
                const double lam_t[], const ffc_law *law, double P[], long *bad);
 
 /* The same columns per slave node of the nodal law (ascending node index,
- * every node of a slave facet): current position, weighted gap (NaN
+ * every vertex of a slave facet: the multipliers' nodes, also of 6-node
+ * facets): current position, weighted gap (NaN
  * without weight), nodal pressure t_a, active (t_a > 0), the node's
  * weight W_a = sum_q N_a da (its tributary area), the master facet of its
  * first link (-1: none); with friction the nodal traction on the slave
@@ -614,8 +626,8 @@ enum {
     FFC_METHOD_AL = 0,          /* surface-to-surface augmented Lagrangian */
     FFC_METHOD_NTS = 1,         /* node-to-surface Lagrange multipliers (linear facets; see ffc_nts_*) */
     FFC_METHOD_MORTAR = 2       /* segment-to-segment augmented Lagrangian: the nodal law on the
-                                   segment links (linear facets; qdeg is the rule on each segment
-                                   triangle).  ffc_scene_search chooses the facet pairs
+                                   segment links (linear or 6-node facets, the multipliers at the
+                                   vertices; qdeg is the rule on each segment triangle).  ffc_scene_search chooses the facet pairs
                                    (ffc_mortar_pairs); every assembly and augmentation clips
                                    them again at its u (ffc_mortar_links), and the consistent
                                    tangent has the segments' motion (ffc_law.edge);

@@ -130,7 +130,7 @@ int ffc__common_checks(const ffc_effects *fx, const ffc_pair *P, int qdeg, long 
     const double *mo = fx->dynamic ? P->v : P->u_prev;
     if (fric && (!lam_t || !mo)) return FFC_ERR_NULL;
     if (qdeg == 0) { /* segment links, each with its weight */
-        if (!law->nodal || P->ns != 3 || P->nm != 3) return FFC_ERR_VALUE;
+        if (!law->nodal || P->ns != P->nm) return FFC_ERR_VALUE;
         if (nl < 0) return FFC_ERR_SIZE;
         *nq = 0;
         for (long k = 0; k < nl; k++)
@@ -147,13 +147,13 @@ int ffc__common_checks(const ffc_effects *fx, const ffc_pair *P, int qdeg, long 
         for (long b = 0; b < law->nedge; b++) {
             const ffc_mortar_edge *e = &law->edge[b];
             if (e->sf < 0 || e->sf >= P->nfs || e->mf < 0 || e->mf >= P->nfm) { *bad = b; return FFC_ERR_INDEX; }
-            for (int l = 0; l < 18; l++)
+            for (int l = 0; l < 3 * (P->ns + P->nm); l++)
                 if (!isfinite(e->dv[l])) { *bad = b; return FFC_ERR_NONFINITE; }
             if (!isfinite(e->xs[0]) || !isfinite(e->xs[1])) { *bad = b; return FFC_ERR_NONFINITE; }
         }
     }
     if (law->dual) {
-        if (!law->nodal || P->ns != 3) return FFC_ERR_VALUE;
+        if (!law->nodal) return FFC_ERR_VALUE;
         for (long k = 0; k < 9 * P->nfs; k++)
             if (!isfinite(law->dual[k])) { *bad = k / 9; return FFC_ERR_NONFINITE; }
     }

@@ -96,10 +96,15 @@ int ffc_clip_polygon(int na, const double a[][2], int nb, const double b[][2], i
  * projected vertex moves as
  *     dxi = m^-1 (dr - dm xi),  r_a = t_a . (y - s_0),  m_ab = t_a . t_b,
  * with dt_1 = ds_1 - ds_0, dt_2 = ds_2 - ds_0, d(y - s_0) = dy - ds_0.  Each
- * moving edge gets the 2-point Gauss rule; at its point b, edv[b][l] is
- * omega_b L (nu . v) per unit change of dof l (dofs: the slave facet's
- * three nodes, then the master facet's, x, y, z each), so that
- * oint F (v . nu) ds = sum_b F(exi_b) edv[b][.]. */
+ * moving edge gets the Gauss rule exact to degree qdeg + 1 (F of degree
+ * qdeg times the linear v . nu; 2 points for qdeg 2); at its point b,
+ * edv[b][l] is omega_b L (nu . v) per unit change of dof l (dofs: the
+ * slave facet's three nodes, then the master facet's, x, y, z each), so
+ * that oint F (v . nu) ds = sum_b F(exi_b) edv[b][.].  This is the exact
+ * derivative of the residual's sum over the points when the rules are
+ * exact for F: always on linear facets with qdeg >= 2 (F is a product of
+ * linear functions there), on straight-sided 6-node facets with qdeg >= 3;
+ * on curved facets the two differ by the rules' error. */
 static void vertex_motion(const double t[2][3], const double mt[2][2], double det, const double d[3],
                           const double xi[2], int b, double dA[2][18])
 {
@@ -189,7 +194,18 @@ int ffc_mortar_segment(int qdeg, const double Xs[3][3], const double Xm[3][3], l
     double dA[3][2][18];
     for (int c = 0; c < 3; c++) vertex_motion((const double(*)[3])t, (const double(*)[2])mt, det, dm[ord[c]], pm[c],
                                               ord[c], dA[c]);
-    static const double gs[2] = {0.21132486540518713, 0.78867513459481287}; /* (1 -+ 1/sqrt 3) / 2 */
+    /* the edge rule: Gauss-Legendre on [0, 1] exact to degree qdeg + 1 (the integrand's degree and
+       the velocity's one): 2 points for qdeg <= 2, 3 for 3-4, 4 for 5-6 */
+    static const double gx[3][4] = {{0.21132486540518713, 0.78867513459481287},
+                                    {0.11270166537925831, 0.5, 0.88729833462074169},
+                                    {0.069431844202973713, 0.33000947820757187, 0.66999052179242813,
+                                     0.93056815579702629}};
+    static const double gw[3][4] = {{0.5, 0.5},
+                                    {0.27777777777777778, 0.44444444444444444, 0.27777777777777778},
+                                    {0.17392742256872693, 0.32607257743127307, 0.32607257743127307,
+                                     0.17392742256872693}};
+    const int rule = qdeg <= 2 ? 0 : qdeg <= 4 ? 1 : 2, ng = rule + 2;
+    const double *gs = gx[rule], *gsw = gw[rule];
     const double tol = 1e-10;
     long m = 0;
     for (int i = 0; i < np; i++) {
@@ -206,13 +222,13 @@ int ffc_mortar_segment(int qdeg, const double Xs[3][3], const double Xm[3][3], l
         if (!(L > 1e-14)) continue;
         const double nu[2] = {ey / L, -ex / L}; /* outward: the polygon is counter-clockwise */
         const double ax = pm[k][0] - pm[j][0], ay = pm[k][1] - pm[j][1], al2 = ax * ax + ay * ay;
-        for (int g = 0; g < 2; g++, m++) {
+        for (int g = 0; g < ng; g++, m++) {
             if (m >= ecap) continue;
             exi[m][0] = P[0] + gs[g] * ex;
             exi[m][1] = P[1] + gs[g] * ey;
             const double s = ((exi[m][0] - pm[j][0]) * ax + (exi[m][1] - pm[j][1]) * ay) / al2;
             for (int l = 0; l < 18; l++)
-                edv[m][l] = 0.5 * L * (nu[0] * ((1 - s) * dA[j][0][l] + s * dA[k][0][l]) +
+                edv[m][l] = gsw[g] * L * (nu[0] * ((1 - s) * dA[j][0][l] + s * dA[k][0][l]) +
                                        nu[1] * ((1 - s) * dA[j][1][l] + s * dA[k][1][l]));
         }
     }
@@ -293,7 +309,7 @@ int ffc_dual_basis(long n, const double xi[][2], const double w[], double A[3][3
     return FFC_OK;
 }
 
-int ffc_mortar_links(long nfs, const long Fs[], long nfm, const long Fm[], long nvs, const double x[], int qdeg,
+int ffc_mortar_links(int nn, long nfs, const long Fs[], long nfm, const long Fm[], long nvs, const double x[], int qdeg,
                      long npairs, const long pairs[], long lcap, ffc_link links[], long *lneed, long ecap,
                      ffc_mortar_edge edges[], long *eneed)
 {
@@ -302,16 +318,17 @@ int ffc_mortar_links(long nfs, const long Fs[], long nfm, const long Fm[], long 
     if (!eneed) eneed = &d2;
     *lneed = *eneed = 0;
     if (!Fs || !Fm || !x || (npairs > 0 && !pairs) || (lcap > 0 && !links) || (ecap > 0 && !edges)) return FFC_ERR_NULL;
+    if (nn != 3 && nn != 6) return FFC_ERR_NODES;
     if (nfs <= 0 || nfm <= 0 || npairs < 0 || lcap < 0 || ecap < 0) return FFC_ERR_SIZE;
     if (ffc_quad_size(qdeg) < 0) return FFC_ERR_QUAD;
     long n = 0, m = 0;
-    double xi[96][2], w[96], exi[8][2], edv[8][18];
+    double xi[96][2], w[96], exi[12][2], edv[12][18]; /* (at most 3 moving edges of 4 points) */
     for (long k = 0; k < npairs; k++) {
         const long f = pairs[2 * k], g = pairs[2 * k + 1];
         if (f < 0 || f >= nfs || g < 0 || g >= nfm) { *lneed = k; return FFC_ERR_INDEX; }
-        double Xs[3][3], Xm[3][3];
-        for (int a = 0; a < 3; a++) {
-            const long vs = Fs[3 * f + a], vm = Fm[3 * g + a];
+        double Xs[FFC_MAXNODES][3], Xm[FFC_MAXNODES][3];
+        for (int a = 0; a < nn; a++) {
+            const long vs = Fs[nn * f + a], vm = Fm[nn * g + a];
             if (vs < 0 || vs >= nvs || vm < 0 || vm >= nvs) { *lneed = k; return FFC_ERR_INDEX; }
             for (int i = 0; i < 3; i++) {
                 Xs[a][i] = x[3 * vs + i];
@@ -320,17 +337,31 @@ int ffc_mortar_links(long nfs, const long Fs[], long nfm, const long Fm[], long 
         }
         double cov;
         long ne = 0;
-        const int np = ffc_mortar_segment(qdeg, (const double(*)[3])Xs, (const double(*)[3])Xm, 96, xi, w, 8,
-                                          edges ? exi : NULL, edv, &ne, &cov);
+        /* (6-node facets: the segments of the vertex triangles, their first 3 nodes; their edge points
+           always, for the check below) */
+        const int np = ffc_mortar_segment(qdeg, (const double(*)[3])Xs, (const double(*)[3])Xm, 96, xi, w, 12,
+                                          edges || nn == 6 ? exi : NULL, edv, &ne, &cov);
         if (np < 0) return np;
+        /* each point's foot on the master facet (the closest point); on a curved 6-node facet a
+           point far off it may have none in the facet's neighbourhood (FFC_ERR_NOCONV): such a
+           pair, far out of contact, gives no segment (whether the tangent's edge points are asked
+           for or not: those are checked too) */
+        ffc_proj pr[96];
+        int far = 0;
+        for (int q = 0; q < np + (nn == 6 ? (int)ne : 0) && !far; q++) {
+            const double *z = q < np ? xi[q] : exi[q - np];
+            double N[FFC_MAXNODES], p[3] = {0, 0, 0};
+            ffc_shape(nn, z, N, NULL);
+            for (int a = 0; a < nn; a++)
+                for (int i = 0; i < 3; i++) p[i] += N[a] * Xs[a][i];
+            ffc_proj e;
+            const int st = ffc__project_free(nn, (const double(*)[3])Xm, p, q < np ? &pr[q] : &e);
+            if (st == FFC_ERR_NOCONV && nn == 6) far = 1;
+            else if (st < 0) return st;
+        }
+        if (far) continue;
         for (int q = 0; q < np; q++, n++) {
             if (n >= lcap) continue;
-            double p[3];
-            for (int i = 0; i < 3; i++)
-                p[i] = Xs[0][i] + xi[q][0] * (Xs[1][i] - Xs[0][i]) + xi[q][1] * (Xs[2][i] - Xs[0][i]);
-            ffc_proj pr;
-            int st = ffc__project_free(3, (const double(*)[3])Xm, p, &pr);
-            if (st < 0) return st;
             ffc_link *lk = &links[n];
             lk->sf = f;
             lk->q = -1;
@@ -338,10 +369,10 @@ int ffc_mortar_links(long nfs, const long Fs[], long nfm, const long Fm[], long 
             lk->xs[1] = xi[q][1];
             lk->w = w[q];
             lk->mf = g;
-            lk->xm[0] = pr.xi[0];
-            lk->xm[1] = pr.xi[1];
-            lk->gap = pr.gap;
-            for (int i = 0; i < 3; i++) lk->n[i] = pr.n[i];
+            lk->xm[0] = pr[q].xi[0];
+            lk->xm[1] = pr[q].xi[1];
+            lk->gap = pr[q].gap;
+            for (int i = 0; i < 3; i++) lk->n[i] = pr[q].n[i];
             lk->where = FFC_FOOT_INSIDE;
         }
         for (long b = 0; edges && np > 0 && b < ne; b++, m++) {
@@ -350,7 +381,12 @@ int ffc_mortar_links(long nfs, const long Fs[], long nfm, const long Fm[], long 
             edges[m].mf = g;
             edges[m].xs[0] = exi[b][0];
             edges[m].xs[1] = exi[b][1];
-            memcpy(edges[m].dv, edv[b], sizeof edv[b]);
+            /* the vertices' dofs in the link's order: the slave facet's nn nodes, then the master's */
+            memset(edges[m].dv, 0, sizeof edges[m].dv);
+            for (int l = 0; l < 9; l++) {
+                edges[m].dv[l] = edv[b][l];
+                edges[m].dv[3 * nn + l] = edv[b][9 + l];
+            }
         }
     }
     *lneed = n;

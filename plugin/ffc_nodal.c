@@ -451,7 +451,7 @@ static long dual_motion(const ffc_pair *P, const ffc_link links[], const ffc_law
         d->e1 = e1;
         d->nd = 9;
         for (int a = 0; a < 3; a++)
-            for (int i = 0; i < 3; i++) d->dof[3 * a + i] = 3 * P->Fs[3 * f + a] + i;
+            for (int i = 0; i < 3; i++) d->dof[3 * a + i] = 3 * P->Fs[P->ns * f + a] + i;
         double Pm[3][3];
         for (int a = 0; a < 3; a++)
             for (int b = 0; b < 3; b++) Pm[a][b] = mo.D[a] * Mi[a][b];
@@ -461,22 +461,24 @@ static long dual_motion(const ffc_pair *P, const ffc_link links[], const ffc_law
         for (long b = 0; b < law->nedge && !over; b++) {
             const ffc_mortar_edge *ed = &law->edge[b];
             if (ed->sf != f) continue;
-            /* the edge point's dofs in d: the slave facet's 9, then its master facet's 9 */
-            int pos[18];
-            for (int l = 0; l < 9; l++) pos[l] = l;
-            for (int a = 0; a < 3 && !over; a++)
-                for (int i = 0; i < 3; i++) {
-                    const long dof = 3 * P->Fm[3 * ed->mf + a] + i;
-                    int p = -1;
-                    for (int k = 9; k < d->nd && p < 0; k++)
-                        if (d->dof[k] == dof) p = k;
-                    if (p < 0) {
-                        if (d->nd >= 9 + 9 * 64) { over = 1; break; }
-                        p = d->nd++;
-                        d->dof[p] = dof;
-                    }
-                    pos[9 + 3 * a + i] = p;
+            /* the edge point's dofs (a link's: the slave facet's ns nodes, then its master facet's nm)
+               in d: the slave facet's vertices first, then its master facets' nodes */
+            int pos[FFC_MAXDOF];
+            for (int l = 0; l < 3 * (P->ns + P->nm) && !over; l++) {
+                pos[l] = -1;
+                if (ed->dv[l] == 0.0) continue;
+                const long dof = l < 3 * P->ns ? 3 * P->Fs[P->ns * f + l / 3] + l % 3
+                                               : 3 * P->Fm[P->nm * ed->mf + (l - 3 * P->ns) / 3] + l % 3;
+                int p = -1;
+                for (int k = 0; k < d->nd && p < 0; k++)
+                    if (d->dof[k] == dof) p = k;
+                if (p < 0) {
+                    if (d->nd >= 9 + 9 * 64) { over = 1; break; }
+                    p = d->nd++;
+                    d->dof[p] = dof;
                 }
+                pos[l] = p;
+            }
             if (over) break;
             const double L[3] = {1.0 - ed->xs[0] - ed->xs[1], ed->xs[0], ed->xs[1]};
             /* dc, dD, dM of this point, then into dA */
@@ -498,7 +500,7 @@ static long dual_motion(const ffc_pair *P, const ffc_link links[], const ffc_law
                     for (int k = 0; k < 3; k++) x -= PdM[a][k] * Mi[k][bb];
                     G[a][bb] = s * x + (s < 1.0 ? 5.0 * (Pm[a][bb] - (a == bb)) : 0.0);
                 }
-            for (int l = 0; l < 18; l++) {
+            for (int l = 0; l < 3 * (P->ns + P->nm); l++) {
                 if (ed->dv[l] == 0.0) continue;
                 for (int a = 0; a < 3; a++)
                     for (int bb = 0; bb < 3; bb++) d->dA[3 * a + bb][pos[l]] += G[a][bb] * ed->dv[l];
@@ -526,7 +528,7 @@ static long dual_motion(const ffc_pair *P, const ffc_link links[], const ffc_law
                     for (int ab = 0; ab < 9; ab++) d->dA[ab][p] = 0.0;
                 }
                 for (int a = 0; a < 3; a++) {
-                    const long v = P->Fs[3 * f + a];
+                    const long v = P->Fs[P->ns * f + a];
                     double y = -w->tn[v] * E->G[k];
                     if (fric && w->T[v].f.state != FFC_FRIC_OPEN) y += w->F[e].sw[k] * w->T[v].f.t[k % 3];
                     for (int bb = 0; bb < 3; bb++) Y[3 * a + bb][p] += E->da * L[bb] * y;
@@ -637,13 +639,13 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
             }
             if (s) { free(DF); free(ds); free(dl); free(EB); free(es); free(el); ffc__nodal_free(&w); return s; }
             for (long i = 0; i < ndf; i++)
-                for (int a = 0; a < 3; a++) ds[P->Fs[3 * DF[i].f + a] + 1]++;
+                for (int a = 0; a < 3; a++) ds[P->Fs[P->ns * DF[i].f + a] + 1]++;
             for (long v = 0; v < P->nv; v++) ds[v + 1] += ds[v];
             long *fill = calloc((size_t)P->nv, sizeof *fill);
             if (!fill) { free(DF); free(ds); free(dl); free(EB); free(es); free(el); ffc__nodal_free(&w); return FFC_ERR_MEMORY; }
             for (long i = 0; i < ndf; i++)
                 for (int a = 0; a < 3; a++) {
-                    const long v = P->Fs[3 * DF[i].f + a];
+                    const long v = P->Fs[P->ns * DF[i].f + a];
                     dl[ds[v] + fill[v]++] = i;
                 }
             free(fill);
@@ -708,7 +710,7 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
                 const ndual_t *d = &DF[dl[m]];
                 int av = -1;
                 for (int a = 0; a < 3; a++)
-                    if (P->Fs[3 * d->f + a] == v) av = a;
+                    if (P->Fs[P->ns * d->f + a] == v) av = a;
                 double Z[3] = {0, 0, 0}, Zr[3][3] = {{0}}, Zn[3][3] = {{0}};
                 for (long e = d->e0; e < d->e1; e++) {
                     const nlink_t *E = &w.L[e];

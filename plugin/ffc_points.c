@@ -94,10 +94,11 @@ int ffc_points_nodes(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
     long *mf = malloc((size_t)pair->nv * sizeof *mf);
     if (!mf) return FFC_ERR_MEMORY;
     for (long v = 0; v < pair->nv; v++) mf[v] = -2; /* not a slave node */
-    for (long k = 0; k < pair->nfs * pair->ns; k++) mf[pair->Fs[k]] = -1;
+    for (long k = 0; k < pair->nfs * pair->ns; k++) /* (the multipliers' nodes: the facets' vertices) */
+        if (k % pair->ns < 3) mf[pair->Fs[k]] = -1;
     for (long k = nl - 1; k >= 0; k--) /* each node's first link's master facet */
         if (links[k].mf >= 0)
-            for (int a = 0; a < pair->ns; a++) mf[pair->Fs[links[k].sf * pair->ns + a]] = links[k].mf;
+            for (int a = 0; a < 3; a++) mf[pair->Fs[links[k].sf * pair->ns + a]] = links[k].mf;
     long need = 0;
     for (long v = 0; v < pair->nv; v++) need += mf[v] >= -1;
     *n = need;

@@ -98,14 +98,15 @@ static int newton_free(int nn, const double X[][3], const double p[3],
         xi[0] = trial[0];
         xi[1] = trial[1];
         *iters = it + 1;
+        /* a step below 1e-13 of the coordinates (1 or more) is at round-off
+         * after a quadratically converging sequence: converged, also outside
+         * the neighbourhood below (a far point over a nearly flat facet) */
+        if (lam * (fabs(d[0]) + fabs(d[1])) < 1e-13 * fmax(1.0, fabs(xi[0]) + fabs(xi[1]))) return FFC_OK;
         /* keep the iterate in a neighbourhood of the facet */
         if (xi[0] < -2.0 || xi[0] > 3.0 || xi[1] < -2.0 || xi[1] > 3.0) {
             xi[0] = fmin(fmax(xi[0], -2.0), 3.0);
             xi[1] = fmin(fmax(xi[1], -2.0), 3.0);
         }
-        /* local coordinates are O(1): a step below 1e-13 is at round-off
-         * after a quadratically converging sequence */
-        if (lam * (fabs(d[0]) + fabs(d[1])) < 1e-13) return FFC_OK;
     }
     return FFC_ERR_NOCONV;
 }

@@ -348,7 +348,7 @@ int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const 
     if ((st = check_nodes(nfm * s->nper, Fm, s->nv, bad))) return st;
     if ((st = check_fused(s->nper, nfs, Fs, nfm, Fm, s->nv, bad))) return st;
     if ((st = check_interior(s, nfs, Fs, nfm, Fm, bad))) return st;
-    if ((o->method == FFC_METHOD_NTS || o->method == FFC_METHOD_MORTAR || o->dual_t) && s->nper != 3) return FFC_ERR_NODES;
+    if ((o->method == FFC_METHOD_NTS || o->dual_t) && s->nper != 3) return FFC_ERR_NODES;
     if (s->np > 0 && s->p[0].o.method != o->method) return FFC_ERR_VALUE; /* one method per scene */
     if (s->np == s->cap) {
         int cap = s->cap ? 2 * s->cap : 4;
@@ -373,7 +373,8 @@ int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const 
     if (o->method == FFC_METHOD_MORTAR) {
         unsigned char *m = calloc(s->nv, 1);
         if (!m) { pair_free(p); return FFC_ERR_MEMORY; }
-        for (long i = 0; i < nfs * s->nper; i++) p->nsn += !m[Fs[i]], m[Fs[i]] = 1;
+        for (long i = 0; i < nfs * s->nper; i++) /* (the multipliers' nodes: the facets' vertices) */
+            if (i % s->nper < 3) p->nsn += !m[Fs[i]], m[Fs[i]] = 1;
         free(m);
     }
     if (o->method == FFC_METHOD_NTS && (st = nts_alloc(s, p))) {
@@ -461,7 +462,7 @@ static int positions(ffc_scene *s, const double u[], long *bad)
 static int mortar_clip(const ffc_scene *s, scene_pair *p, int edges)
 {
     long ln = 0, en = 0;
-    int st = ffc_mortar_links(p->nfs, p->Fs, p->nfm, p->Fm, s->nv, s->x, p->o.qdeg, p->nmp, p->mp, p->lcap, p->links,
+    int st = ffc_mortar_links(s->nper, p->nfs, p->Fs, p->nfm, p->Fm, s->nv, s->x, p->o.qdeg, p->nmp, p->mp, p->lcap, p->links,
                               &ln, edges ? p->ecap : 0, edges ? p->edges : NULL, &en);
     if (st == FFC_ERR_CAPACITY) {
         const long lc = ln > p->lcap ? ln + ln / 4 + 16 : p->lcap, ec = en > p->ecap ? en + en / 4 + 16 : p->ecap;
@@ -470,7 +471,7 @@ static int mortar_clip(const ffc_scene *s, scene_pair *p, int edges)
         if ((lc > p->lcap && !l) || (ec > p->ecap && !e)) { free(l); free(e); return FFC_ERR_MEMORY; }
         if (l) { free(p->links); p->links = l; p->lcap = lc; }
         if (e) { free(p->edges); p->edges = e; p->ecap = ec; }
-        st = ffc_mortar_links(p->nfs, p->Fs, p->nfm, p->Fm, s->nv, s->x, p->o.qdeg, p->nmp, p->mp, p->lcap, p->links,
+        st = ffc_mortar_links(s->nper, p->nfs, p->Fs, p->nfm, p->Fm, s->nv, s->x, p->o.qdeg, p->nmp, p->mp, p->lcap, p->links,
                               &ln, edges ? p->ecap : 0, edges ? p->edges : NULL, &en);
     }
     if (st < 0) return st;

@@ -964,7 +964,7 @@ int ffc_mortar_pairs(const ffc_tree *t, long nfs, const long Fs[], long nvs, con
     if (!need) need = &dummy;
     *need = 0;
     if (!t || !Fs || !x || (cap > 0 && !pairs)) return FFC_ERR_NULL;
-    if (t->nn != 3) return FFC_ERR_NODES;
+    const int nn = t->nn; /* (3 or 6: ffc_tree_build) */
     if (nfs <= 0) return FFC_ERR_EMPTY;
     if (cap < 0 || t->nv > nvs) return FFC_ERR_SIZE;
     ffc_search_opts def = ffc_search_defaults();
@@ -972,22 +972,22 @@ int ffc_mortar_pairs(const ffc_tree *t, long nfs, const long Fs[], long nvs, con
     if (!(o->capture_rel >= 0) || !(o->capture_abs >= 0) || !(o->edge_tol >= 0) || isinf(o->capture_rel) ||
         isinf(o->capture_abs))
         return FFC_ERR_VALUE;
-    for (long k = 0; k < 3 * nfs; k++)
+    for (long k = 0; k < nn * nfs; k++)
         if (Fs[k] < 0 || Fs[k] >= nvs) return FFC_ERR_INDEX;
-    for (long k = 0; k < 3 * t->nf; k++)
+    for (long k = 0; k < nn * t->nf; k++)
         if (t->F[k] < 0 || t->F[k] >= nvs) return FFC_ERR_INDEX;
     const double rmax = fmax(o->capture_abs, o->capture_rel * t->hmax);
     long n = 0, cand[MORTAR_CAND];
     double xi[MORTAR_PTS][2], w[MORTAR_PTS];
     for (long f = 0; f < nfs; f++) {
-        double Xs[3][3], ns[3], box[6];
-        for (int a = 0; a < 3; a++)
+        double Xs[FFC_MAXNODES][3], ns[3], box[6]; /* (the segments: the vertex triangles) */
+        for (int a = 0; a < nn; a++)
             for (int i = 0; i < 3; i++) {
-                Xs[a][i] = x[3 * Fs[3 * f + a] + i];
+                Xs[a][i] = x[3 * Fs[nn * f + a] + i];
                 if (!isfinite(Xs[a][i])) return FFC_ERR_NONFINITE;
             }
         facet_normal(Xs, ns);
-        facet_box(3, &Xs[0][0], box);
+        facet_box(nn, &Xs[0][0], box);
         for (int i = 0; i < 3; i++) { box[i] -= rmax; box[3 + i] += rmax; }
         const long nc = tree_overlap(t, box, MORTAR_CAND, cand);
         if (nc > MORTAR_CAND) return FFC_ERR_SIZE;
@@ -995,10 +995,10 @@ int ffc_mortar_pairs(const ffc_tree *t, long nfs, const long Fs[], long nvs, con
         int captured = 0;
         for (long c = 0; c < nc; c++) {
             const long mf = t->slot2f[cand[c]];
-            double Xm[3][3], nm[3];
-            for (int a = 0; a < 3; a++)
+            double Xm[FFC_MAXNODES][3], nm[3];
+            for (int a = 0; a < nn; a++)
                 for (int i = 0; i < 3; i++) {
-                    Xm[a][i] = x[3 * t->F[3 * mf + a] + i];
+                    Xm[a][i] = x[3 * t->F[nn * mf + a] + i];
                     if (!isfinite(Xm[a][i])) return FFC_ERR_NONFINITE;
                 }
             facet_normal(Xm, nm);
@@ -1022,6 +1022,7 @@ int ffc_mortar_pairs(const ffc_tree *t, long nfs, const long Fs[], long nvs, con
             for (int i = 0; i < 3; i++)
                 pc[i] = Xs[0][i] + xc[0] * (Xs[1][i] - Xs[0][i]) + xc[1] * (Xs[2][i] - Xs[0][i]);
             ffc_proj pr;
+            /* (the vertex triangle's plane: a capture decision, in closed form for 6-node facets too) */
             int st = ffc__project_free(3, (const double(*)[3])Xm, pc, &pr);
             if (st < 0) return st;
             /* a facet within the capture distance of one master facet takes all those it faces and
@@ -1054,7 +1055,7 @@ int ffc_mortar_search(const ffc_tree *t, long nfs, const long Fs[], long nvs, co
     long *pairs = malloc((size_t)(2 * np + 2) * sizeof *pairs);
     if (!pairs) return FFC_ERR_MEMORY;
     st = ffc_mortar_pairs(t, nfs, Fs, nvs, x, o, np, pairs, &np);
-    if (st >= 0) st = ffc_mortar_links(nfs, Fs, t->nf, t->F, nvs, x, qdeg, np, pairs, cap, links, need, 0, NULL, NULL);
+    if (st >= 0) st = ffc_mortar_links(t->nn, nfs, Fs, t->nf, t->F, nvs, x, qdeg, np, pairs, cap, links, need, 0, NULL, NULL);
     free(pairs);
     return st;
 }

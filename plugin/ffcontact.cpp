@@ -854,11 +854,12 @@ ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &
         fail(fn, s.str());
     }
     const int m = method == "nts" ? FFC_METHOD_NTS : method == "mortar" ? FFC_METHOD_MORTAR : FFC_METHOD_AL;
-    if (m != FFC_METHOD_AL && d.order != 1)
+    if (m == FFC_METHOD_NTS && d.order != 1)
         fail(fn, "argument 'method': \"" + method + "\" takes linear facets only: a scene of order 1 ([P1,P1,P1])");
-    // a new mortar pair integrates each segment triangle with the degree-2 rule (exact for the products of
-    // linear shape functions that its small-strain integrals are)
-    if (m == FFC_METHOD_MORTAR && o.method != FFC_METHOD_MORTAR && !nm.has(PO_QDEG)) o.qdeg = 2;
+    // a new mortar pair integrates each segment triangle with the rule of degree 2 on linear facets, 3 on
+    // quadratic ones (exact for the products of the displacements' and the multipliers' shape functions
+    // that its small-strain integrals on flat facets are)
+    if (m == FFC_METHOD_MORTAR && o.method != FFC_METHOD_MORTAR && !nm.has(PO_QDEG)) o.qdeg = d.order == 2 ? 3 : 2;
     if (fn == std::string("ffcSetPair")) {
         if (m != o.method) fail(fn, "argument 'method': a pair keeps the method it was added with");
     } else if (ffc_scene_npairs(d.s) > 0) {

@@ -262,6 +262,36 @@ static void test_curved_foot_precision(void **state)
     }
 }
 
+/* A point far off a straight-sided 6-node facet (its free foot at xi =
+ * (-2.4, 3.8), outside the neighbourhood [-2, 3]^2 where the iteration
+ * keeps its iterates): the free foot is the vertex triangle's, as the
+ * closed form of 3 nodes gives it, not a failure to converge (a mortar
+ * pair's far points over a flat master) */
+static void test_far_free_foot(void **state)
+{
+    (void)state;
+    double X6[6][3];
+    for (int a = 0; a < 3; a++)
+        for (int i = 0; i < 3; i++) {
+            X6[a][i] = T3[a][i];
+            X6[3 + a][i] = 0.5 * (T3[a][i] + T3[(a + 1) % 3][i]);
+        }
+    const double xi0[2] = {-2.4, 3.8};
+    ffc_point g;
+    assert_int_equal(ffc_facet_point(3, T3, xi0, &g), FFC_OK);
+    double p[3];
+    for (int i = 0; i < 3; i++) p[i] = g.x[i] + 0.7 * g.n[i];
+    ffc_proj p3, p6;
+    assert_true(ffc_project(3, T3, p, &p3) >= 0);
+    assert_true(ffc_project(6, (const double(*)[3])X6, p, &p6) >= 0);
+    for (int a = 0; a < 2; a++) {
+        assert_close(p3.xi_free[a], xi0[a], 1e-12);
+        assert_close(p6.xi_free[a], xi0[a], 1e-12);
+        assert_close(p6.xi[a], p3.xi[a], 1e-12); /* the clamped foot: the same boundary point */
+    }
+    assert_close(p6.gap, p3.gap, 1e-12);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -272,6 +302,7 @@ int main(void)
         cmocka_unit_test(test_derivatives),
         cmocka_unit_test(test_deriv_rejects_clamped),
         cmocka_unit_test(test_curved_foot_precision),
+        cmocka_unit_test(test_far_free_foot),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
