@@ -627,7 +627,8 @@ enum {
     FFC_METHOD_NTS = 1,         /* node-to-surface Lagrange multipliers (linear facets; see ffc_nts_*) */
     FFC_METHOD_MORTAR = 2       /* segment-to-segment augmented Lagrangian: the nodal law on the
                                    segment links (linear or 6-node facets, the multipliers at the
-                                   vertices; qdeg is the rule on each segment triangle).  ffc_scene_search chooses the facet pairs
+                                   vertices; qdeg is the rule on each segment triangle).
+                                   ffc_scene_search chooses the facet pairs
                                    (ffc_mortar_pairs); every assembly and augmentation clips
                                    them again at its u (ffc_mortar_links), and the consistent
                                    tangent has the segments' motion (ffc_law.edge);
