@@ -175,17 +175,25 @@ static void test_segment_motion(void **state)
 /* An n x n grid of the unit square at height z, each cell cut in two
  * (diagonal alternating with shift), rotated by ang about the square's
  * centre and shrunk by scale; normal up (+z) or down. */
-static long grid(int n, double z, double ang, double scale, int up, int shift, long v0, double X[], long F[])
+/* an m x m lattice of nodes from v0 over [0.5 -+ scale/2]^2 rotated by ang
+ * about its centre, at height z; returns the next free node */
+static long lattice(int m, double z, double ang, double scale, long v0, double X[])
 {
     long v = v0;
     const double c = cos(ang), s = sin(ang);
-    for (int j = 0; j <= n; j++)
-        for (int i = 0; i <= n; i++, v++) {
-            const double x = scale * ((double)i / n - 0.5), y = scale * ((double)j / n - 0.5);
+    for (int j = 0; j < m; j++)
+        for (int i = 0; i < m; i++, v++) {
+            const double x = scale * ((double)i / (m - 1) - 0.5), y = scale * ((double)j / (m - 1) - 0.5);
             X[3 * v] = 0.5 + c * x - s * y;
             X[3 * v + 1] = 0.5 + s * x + c * y;
             X[3 * v + 2] = z;
         }
+    return v;
+}
+
+static long grid(int n, double z, double ang, double scale, int up, int shift, long v0, double X[], long F[])
+{
+    const long v = lattice(n + 1, z, ang, scale, v0, X);
     long f = 0;
     for (int j = 0; j < n; j++)
         for (int i = 0; i < n; i++) {
@@ -762,15 +770,7 @@ static void test_scene_pair(void **state)
 static long grid6(int n, double z, double ang, double scale, int up, long v0, double X[], long F[])
 {
     const int m = 2 * n + 1;
-    const double c = cos(ang), s = sin(ang);
-    for (int j = 0; j < m; j++)
-        for (int i = 0; i < m; i++) {
-            const long v = v0 + (long)j * m + i;
-            const double x = scale * ((double)i / (m - 1) - 0.5), y = scale * ((double)j / (m - 1) - 0.5);
-            X[3 * v] = 0.5 + c * x - s * y;
-            X[3 * v + 1] = 0.5 + s * x + c * y;
-            X[3 * v + 2] = z;
-        }
+    const long v = lattice(m, z, ang, scale, v0, X);
     long f = 0;
     for (int cj = 0; cj < n; cj++)
         for (int ci = 0; ci < n; ci++) {
@@ -790,7 +790,7 @@ static long grid6(int n, double z, double ang, double scale, int up, long v0, do
                 f++;
             }
         }
-    return v0 + (long)m * m;
+    return v;
 }
 
 /* A mortar pair of 6-node facets (a scene of order 2): the segments of
