@@ -96,6 +96,7 @@ else
     run combined p2-hc0.05-q2 -hc 0.05 -q 2 -DQUADRATIC=1
     for h in 0.1 0.05 0.025 0.0125; do run method "nts-hc$h" -hc $h -method nts; done
     for h in 0.1 0.05 0.025 0.0125; do run method "mortar-hc$h" -hc $h -method mortar; done
+    for h in 0.05 0.025; do run method "mortar-p2-hc$h" -hc $h -method mortar -DQUADRATIC=1; done
     run solver solver-UMFPACK -hc 0.025 -solver UMFPACK
     run solver solver-UMFPACK-hc0.0125 -hc 0.0125 -solver UMFPACK
     run solver solver-UMFPACK-p2 -hc 0.05 -DQUADRATIC=1 -solver UMFPACK
