@@ -5,6 +5,7 @@
 #include "ffc_internal.h"
 
 #include <math.h>
+#include <string.h>
 
 #define PROJ_MAXIT 50
 #define INSIDE_TOL 1e-12   /* local-coordinate tolerance of "inside" */
@@ -60,9 +61,10 @@ static int set_foot(int nn, const double X[][3], const double p[3], const double
 static int newton_free(int nn, const double X[][3], const double p[3],
                        double xi[2], int *iters, double h2)
 {
-    double x[3], t[2][3], xx[3][3];
+    double x[3], t[2][3], xx[3][3], xt[3], tt[2][3], xxt[3][3];
+    int have = 0; /* x, t, xx are those of xi (the last accepted trial's) */
     for (int it = 0; it < PROJ_MAXIT; it++) {
-        facet_eval(nn, X, xi, x, t, xx);
+        if (!have) facet_eval(nn, X, xi, x, t, xx);
         double r[3] = {p[0] - x[0], p[1] - x[1], p[2] - x[2]};
         double F[2] = {-ffc__dot(t[0], r), -ffc__dot(t[1], r)};
         double m00 = ffc__dot(t[0], t[0]), m01 = ffc__dot(t[0], t[1]),
@@ -85,7 +87,6 @@ static int newton_free(int nn, const double X[][3], const double p[3],
         for (int ls = 0; ls < 40; ls++) {
             trial[0] = xi[0] + lam * d[0];
             trial[1] = xi[1] + lam * d[1];
-            double xt[3], tt[2][3], xxt[3][3];
             facet_eval(nn, X, trial, xt, tt, xxt);
             if (dist2(p, xt) <= f0 * (1.0 + 1e-14) + 1e-30 * h2) break;
             /* near the solution the distance changes below its round-off:
@@ -103,9 +104,14 @@ static int newton_free(int nn, const double X[][3], const double p[3],
          * the neighbourhood below (a far point over a nearly flat facet) */
         if (lam * (fabs(d[0]) + fabs(d[1])) < 1e-13 * fmax(1.0, fabs(xi[0]) + fabs(xi[1]))) return FFC_OK;
         /* keep the iterate in a neighbourhood of the facet */
-        if (xi[0] < -2.0 || xi[0] > 3.0 || xi[1] < -2.0 || xi[1] > 3.0) {
+        have = !(xi[0] < -2.0 || xi[0] > 3.0 || xi[1] < -2.0 || xi[1] > 3.0);
+        if (!have) {
             xi[0] = fmin(fmax(xi[0], -2.0), 3.0);
             xi[1] = fmin(fmax(xi[1], -2.0), 3.0);
+        } else {
+            memcpy(x, xt, sizeof x);
+            memcpy(t, tt, sizeof t);
+            memcpy(xx, xxt, sizeof xx);
         }
     }
     return FFC_ERR_NOCONV;
