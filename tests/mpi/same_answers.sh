@@ -49,6 +49,8 @@ check hertz-al hertz "$H" -hc 0.1 -vtk 0
 # node at the rim carries 1e-12 or 0 by round-off)
 check hertz-nts hertz "F F_contact a p_max" -hc 0.1 -vtk 0 -method nts
 check hertz-mortar hertz "$H" -hc 0.1 -vtk 0 -method mortar
+# mortar on quadratic elements (6-node facets)
+check hertz-mortar-p2 hertz "$H" -hc 0.1 -vtk 0 -method mortar -DQUADRATIC=1
 # (a support of 384 contact dofs: the condensed Newton's dense LU shared
 # over the ranks, ScaLAPACK)
 check hertz-025 hertz "$H" -hc 0.025 -vtk 0
