@@ -709,6 +709,23 @@ static void test_search_bad_input(void **state)
     free(a);
 }
 
+/* a frictionless small-strain scene of nn-node facets with one mortar pair
+ * (rule of degree qdeg, eps_n 1e3); *o its options */
+static ffc_scene *mortar_scene(int nn, long nv, const double X[], long nfs, const long Fs[], long nfm, const long Fm[],
+                               int qdeg, ffc_pair_opts *o)
+{
+    ffc_effects fx = {0, 0, 0};
+    ffc_scene *s;
+    assert_int_equal(ffc_scene_create(nn, nv, X, 0, NULL, &fx, &s), FFC_OK);
+    *o = ffc_pair_defaults();
+    o->method = FFC_METHOD_MORTAR;
+    o->qdeg = qdeg;
+    o->eps_n = 1e3;
+    long bad;
+    assert_int_equal(ffc_scene_add_pair(s, nfs, Fs, nfm, Fm, o, &bad), 0);
+    return s;
+}
+
 /* A mortar pair in a scene: nothing to add before its first search (a
  * dynamic scene evaluates its residual before searching), its links and
  * dual basis from each search, one output row per slave node with the
@@ -721,15 +738,9 @@ static void test_scene_pair(void **state)
     static long Fm[6 * NM * NM], Fs[6 * NS * NS];
     grid(NM, 0.0, 0.0, 1.0, 1, 0, 0, X, Fm);
     grid(NS, 0.0, 0.35, 0.7, 0, 1, NVM, X, Fs);
-    ffc_effects fx = {0, 0, 0};
-    ffc_scene *s;
-    assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_OK);
-    ffc_pair_opts o = ffc_pair_defaults();
-    o.method = FFC_METHOD_MORTAR;
-    o.qdeg = 2;
-    o.eps_n = 1e3;
+    ffc_pair_opts o;
     long bad;
-    assert_int_equal(ffc_scene_add_pair(s, 2 * NS * NS, Fs, 2 * NM * NM, Fm, &o, &bad), 0);
+    ffc_scene *s = mortar_scene(3, NV, X, 2 * NS * NS, Fs, 2 * NM * NM, Fm, 2, &o);
     memset(u, 0, sizeof u);
     for (long v = NVM; v < NV; v++) u[3 * v + 2] = -0.001; /* the slave pressed in by 0.001 */
     long nt;
@@ -810,15 +821,9 @@ static void test_scene_pair_p2(void **state)
     static long Fm[6 * 2 * NM * NM], Fs[6 * 2 * NS * NS];
     grid6(NM, 0.0, 0.0, 1.0, 1, 0, X, Fm);
     grid6(NS, 0.0, 0.35, 0.7, 0, NVM, X, Fs);
-    ffc_effects fx = {0, 0, 0};
-    ffc_scene *s;
-    assert_int_equal(ffc_scene_create(6, NV, X, 0, NULL, &fx, &s), FFC_OK);
-    ffc_pair_opts o = ffc_pair_defaults();
-    o.method = FFC_METHOD_MORTAR;
-    o.qdeg = 3;
-    o.eps_n = 1e3;
+    ffc_pair_opts o;
     long bad, nt, linked;
-    assert_int_equal(ffc_scene_add_pair(s, 2 * NS * NS, Fs, 2 * NM * NM, Fm, &o, &bad), 0);
+    ffc_scene *s = mortar_scene(6, NV, X, 2 * NS * NS, Fs, 2 * NM * NM, Fm, 3, &o);
     memset(u, 0, sizeof u);
     for (long v = NVM; v < NV; v++) u[3 * v + 2] = -0.001;
     assert_int_equal(ffc_scene_search(s, u, &linked, &bad), FFC_OK);
