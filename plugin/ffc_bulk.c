@@ -103,6 +103,11 @@ struct ffc__bulk {
     int rcomm;                 /* the communicator (Fortran handle) */
     int rrank, rsize;          /* this rank, the ranks (rsize 1: one process, nothing shared) */
     long *rcount;              /* [rsize] work: the values each rank solved */
+    int ncomm;                 /* the ranks of rcomm on this machine (Fortran handle; valid when nsize > 1) */
+    int nrank, nsize;          /* this rank among them, their count: rank 0 factorizes K with the BLAS
+                                  threads of them all, into memory they share */
+    double *wbase;             /* [L->xsize] that memory: L->x on each of them (NULL: L->x is CHOLMOD's) */
+    int win;                   /* its handle (MPI window) */
     /* the pruned solves of a supernodal factor (pruned_block), made with the factor */
     int prune;                 /* 1: compliance columns by pruned solves when L is supernodal (default) */
     int force_super;           /* 1: a supernodal L whatever its size (test hook; 0: CHOLMOD chooses) */
@@ -149,7 +154,10 @@ static void bulk_free_factor(ffc__bulk *b)
     cholmod_dense **d[] = {&b->B, &b->X, &b->Y, &b->E, &b->Bb, &b->Xb, &b->Yb, &b->Eb};
     for (size_t k = 0; k < sizeof d / sizeof *d; k++)
         if (*d[k]) cholmod_free_dense(d[k], &b->cc);
+    if (b->L && b->wbase && b->L->x == b->wbase) b->L->x = NULL;   /* (not CHOLMOD's to free) */
     if (b->L) cholmod_free_factor(&b->L, &b->cc);
+    if (b->wbase) ffc__mpi_shared_free(b->win);
+    b->wbase = NULL;
     prune_free(b);
     b->prev = 0;
     b->factored = 0;
@@ -170,6 +178,7 @@ void ffc__bulk_free(ffc__bulk *b)
     free(b->Gc); free(b->ti); free(b->tj); free(b->tv); free(b->Mw); free(b->Gw);
     free(b->rows); free(b->rpos); free(b->H); free(b->bprev); free(b->xprev);
     free(b->kdof); free(b->klu); free(b->kpiv); free(b->gv); free(b->rcount);
+    if (b->nsize > 1) ffc__mpi_comm_free(b->ncomm);
     free(b);
 }
 
@@ -195,6 +204,7 @@ int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const do
     b->mmax = mmax;
     b->prune = 1;
     b->rsize = 1;
+    b->nsize = 1;
     const size_t nn = (size_t)n, nz = (size_t)(nt > 0 ? nt : 1);
     b->Ti = malloc(nz * sizeof(long));
     b->Tj = malloc(nz * sizeof(long));
@@ -289,6 +299,8 @@ int ffc__bulk_set_mumps(ffc__bulk *b, int fcomm)
     ffc__mumps_free(b->mp);
     b->mp = m;
     b->rsize = 1;
+    if (b->nsize > 1) ffc__mpi_comm_free(b->ncomm);
+    b->nsize = 1;
     shared_lu(b, fcomm, 1);
     return FFC_OK;
 }
@@ -309,6 +321,15 @@ int ffc__bulk_set_replicated(ffc__bulk *b, int fcomm)
     b->rcomm = fcomm;
     b->rrank = rank;
     b->rsize = size;
+    if (b->nsize > 1) ffc__mpi_comm_free(b->ncomm);
+    b->nsize = 1;
+    int nc = 0, nr = 0, ns = 1;
+    if (size > 1 && ffc__mpi_node(fcomm, &nc, &nr, &ns) == FFC_OK) {
+        b->ncomm = nc;
+        b->nrank = nr;
+        b->nsize = ns;
+        if (ns < 2) ffc__mpi_comm_free(nc);
+    }
     shared_lu(b, fcomm, size > 1);
     return FFC_OK;
 }
@@ -380,6 +401,69 @@ static int backsolve(ffc__bulk *b, const double rhs[], double y[])
  * values of those dofs are moved to the right-hand side: the same solution
  * as the tgv rows' to within 1/tgv, and a factor whose pivots show a
  * singular K: its estimated reciprocal condition below 1e-12 is refused) */
+/* The numeric factorization of A into the analysed b->L; b->info.rcond */
+static int numeric(ffc__bulk *b, cholmod_sparse *A)
+{
+    cholmod_factorize(A, b->L, &b->cc);
+    if (b->cc.status == CHOLMOD_NOT_POSDEF || b->L->minor < b->L->n) return FFC_ERR_SINGULAR;
+    if (b->cc.status < CHOLMOD_OK) return FFC_ERR_MEMORY;
+    b->info.rcond = cholmod_rcond(b->L, &b->cc);
+    return b->info.rcond >= 1e-12 ? FFC_OK : FFC_ERR_SINGULAR;
+}
+
+/* The same on the ranks of one machine (replicated bulk, a supernodal L):
+ * L's values in memory they share; their rank 0 factorizes into it with as
+ * many BLAS threads as they are ranks, while the others wait without
+ * spinning, and every rank then solves with the one factor (one copy per
+ * machine instead of one per rank).  L's structure, from the same analysis
+ * of the same matrix, is the same on every rank: checked first, and where
+ * it is not (or the shared memory is refused), each rank factorizes for
+ * itself. */
+static int numeric_on_node(ffc__bulk *b, cholmod_sparse *A)
+{
+    const cholmod_factor *L = b->L;
+    double sig[4] = {(double)L->xsize, (double)L->nsuper, (double)L->ssize, 0.0}, s0[4];
+    const int *perm = L->Perm;
+    for (size_t k = 0; k < L->n; k++) sig[3] += (double)perm[k] * (double)((k % 1021) + 1);
+    memcpy(s0, sig, sizeof sig);
+    int st = ffc__mpi_bcast(b->ncomm, s0, 4, 0);
+    if (st) return st;
+    if (!ffc__mpi_min(b->ncomm, memcmp(s0, sig, sizeof sig) == 0)) return numeric(b, A);
+    double *x = NULL;
+    int win = 0;
+    st = ffc__mpi_shared(b->ncomm, (long)L->xsize, &x, &win);
+    if (!ffc__mpi_min(b->ncomm, st == FFC_OK)) {
+        if (!st) ffc__mpi_shared_free(win);
+        return numeric(b, A);
+    }
+    b->wbase = x;
+    b->win = win;
+    /* L made numeric (its values not yet touched), the values moved to the shared memory */
+    cholmod_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, b->L, &b->cc);
+    st = b->cc.status < CHOLMOD_OK || !b->L->x ? FFC_ERR_MEMORY : FFC_OK;
+    if (!st) {
+        cholmod_free(b->L->xsize, sizeof(double), b->L->x, &b->cc);
+        b->L->x = x;
+    }
+    if (!ffc__mpi_min(b->ncomm, st == FFC_OK)) return st ? st : FFC_ERR_MEMORY;
+    double head[2] = {0.0, 0.0};   /* rank 0's status and rcond */
+    if (b->nrank == 0) {
+        const int old = ffc__blas_threads(b->nsize);
+        head[0] = numeric(b, A);
+        ffc__blas_threads(old);
+        if (head[0] == FFC_OK && b->L->x != x) {   /* (CHOLMOD put the values elsewhere) */
+            memcpy(x, b->L->x, b->L->xsize * sizeof(double));
+            cholmod_free(b->L->xsize, sizeof(double), b->L->x, &b->cc);
+            b->L->x = x;
+        }
+        head[1] = b->info.rcond;
+    }
+    if ((st = ffc__mpi_bcast(b->ncomm, head, 2, 1))) return st;
+    ffc__mpi_shared_sync(win);   /* (rank 0's values seen by every rank) */
+    b->info.rcond = head[1];
+    return (int)head[0];
+}
+
 static int factorize_timed(ffc__bulk *b, long nnew, const long nd[])
 {
     if (!b->started) {
@@ -423,15 +507,7 @@ static int factorize_timed(ffc__bulk *b, long nnew, const long nd[])
         }
     }
     cholmod_free_triplet(&T, &b->cc);
-    if (!st && !b->mp) {
-        cholmod_factorize(A, b->L, &b->cc);
-        if (b->cc.status == CHOLMOD_NOT_POSDEF || b->L->minor < b->L->n) st = FFC_ERR_SINGULAR;
-        else if (b->cc.status < CHOLMOD_OK) st = FFC_ERR_MEMORY;
-        else {
-            b->info.rcond = cholmod_rcond(b->L, &b->cc);
-            if (!(b->info.rcond >= 1e-12)) st = FFC_ERR_SINGULAR;
-        }
-    }
+    if (!st && !b->mp) st = b->nsize > 1 && b->L->is_super ? numeric_on_node(b, A) : numeric(b, A);
     if (A) cholmod_free_sparse(&A, &b->cc);
     if (!st) {
         b->B = cholmod_zeros((size_t)b->n, 1, CHOLMOD_REAL, &b->cc);
@@ -843,6 +919,7 @@ void ffc__bulk_info(const ffc__bulk *b, ffc_solve_info *info)
     if (b) *info = b->info;
     else memset(info, 0, sizeof *info);
     info->ranks = b ? b->rsize : 1;
+    info->factor_ranks = b && b->wbase ? b->nsize : 1;
     if (b && b->mp) ffc__mumps_info(b->mp, &info->ranks, &info->factor_mb, &info->factor_mb_max);
 }
 

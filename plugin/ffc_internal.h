@@ -75,5 +75,24 @@ void ffc__dual_matrix(const ffc__dual_moments *m, double A[3][3]);
 int ffc__mpi_ranks(int fcomm, int *rank, int *size);
 int ffc__mpi_min(int fcomm, int v);
 int ffc__mpi_allgather(int fcomm, double buf[], const long count[]);
+/* The ranks of fcomm on this process's machine (shared memory), as a new
+ * communicator *ncomm (its Fortran handle; ffc__mpi_comm_free), with this
+ * rank and their count there (one process: 0 and 1, no communicator).
+ * n doubles broadcast from rank 0 of fcomm; idle = 1: the other ranks wait
+ * without spinning, leaving their cores to rank 0's threads. */
+int ffc__mpi_node(int fcomm, int *ncomm, int *rank, int *size);
+void ffc__mpi_comm_free(int fcomm);
+int ffc__mpi_bcast(int fcomm, double v[], long n, int idle);
+/* n doubles of memory shared by the ranks of fcomm (one machine; a
+ * collective call): held by its rank 0, *base on every rank, *win the
+ * handle for ffc__mpi_shared_free (collective too); after a rank wrote
+ * into it, and before the others read, every rank calls
+ * ffc__mpi_shared_sync (collective: a fence). */
+int ffc__mpi_shared(int fcomm, long n, double **base, int *win);
+void ffc__mpi_shared_sync(int win);
+void ffc__mpi_shared_free(int win);
+/* The BLAS's threads set to n (n <= 0: unchanged); returns the count
+ * before, or 0 when the BLAS is not OpenBLAS (nothing changed). */
+int ffc__blas_threads(int n);
 
 #endif

@@ -1,8 +1,12 @@
 /* ffc_mpi.c: the ranks of MPI_COMM_WORLD, reductions and gathers over them,
- * and this process's peak memory (a build without -DFFC_MPI is one rank). */
+ * the ranks of one machine, the BLAS's threads, and this process's peak
+ * memory (a build without -DFFC_MPI is one rank). */
+#define _GNU_SOURCE /* RTLD_DEFAULT, nanosleep */
+#include <dlfcn.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <time.h>
 
 #include "ffc.h"
 #include "ffc_internal.h"
@@ -160,6 +164,95 @@ int ffc__mpi_allgather(int fcomm, double buf[], const long count[])
     return st;
 }
 
+int ffc__mpi_node(int fcomm, int *ncomm, int *rank, int *size)
+{
+    *ncomm = 0;
+    *rank = 0;
+    *size = 1;
+    if (!running()) return FFC_OK;
+    MPI_Comm c;
+    if (MPI_Comm_split_type(MPI_Comm_f2c((MPI_Fint)fcomm), MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &c) !=
+        MPI_SUCCESS)
+        return FFC_ERR_UNAVAILABLE;
+    MPI_Comm_set_errhandler(c, MPI_ERRORS_RETURN);   /* (shared memory refused: a status, not an abort) */
+    MPI_Comm_rank(c, rank);
+    MPI_Comm_size(c, size);
+    *ncomm = (int)MPI_Comm_c2f(c);
+    return FFC_OK;
+}
+
+void ffc__mpi_comm_free(int fcomm)
+{
+    if (!running()) return;
+    MPI_Comm c = MPI_Comm_f2c((MPI_Fint)fcomm);
+    MPI_Comm_free(&c);
+}
+
+int ffc__mpi_bcast(int fcomm, double v[], long n, int idle)
+{
+    if (!running()) return FFC_OK;
+    const MPI_Comm c = MPI_Comm_f2c((MPI_Fint)fcomm);
+    const long piece = 1L << 28;   /* (MPI's counts are int) */
+    long off = 0;
+    do {
+        const int k = (int)(n - off < piece ? n - off : piece);
+        off += k;
+        if (!idle) {   /* (the blocking call: much faster on large messages than the non-blocking one) */
+            if (MPI_Bcast(v + off - k, k, MPI_DOUBLE, 0, c) != MPI_SUCCESS) return FFC_ERR_UNAVAILABLE;
+            continue;
+        }
+        MPI_Request rq;
+        if (MPI_Ibcast(v + off - k, k, MPI_DOUBLE, 0, c, &rq) != MPI_SUCCESS) return FFC_ERR_UNAVAILABLE;
+        int done = 0;
+        while (!done) {
+            /* a rank waiting for another's long computation yields its core
+             * to it (MPI's own wait would spin on it) */
+            if (MPI_Test(&rq, &done, MPI_STATUS_IGNORE) != MPI_SUCCESS) return FFC_ERR_UNAVAILABLE;
+            if (!done) {
+                const struct timespec pause = {0, 500000};   /* 0.5 ms */
+                nanosleep(&pause, NULL);
+            }
+        }
+    } while (off < n);
+    return FFC_OK;
+}
+
+int ffc__mpi_shared(int fcomm, long n, double **base, int *win)
+{
+    *base = NULL;
+    *win = 0;
+    if (!running()) return FFC_ERR_UNAVAILABLE;
+    const MPI_Comm c = MPI_Comm_f2c((MPI_Fint)fcomm);
+    int rank = 0;
+    MPI_Comm_rank(c, &rank);
+    MPI_Win w;
+    double *p = NULL;
+    const MPI_Aint bytes = rank == 0 ? (MPI_Aint)n * (MPI_Aint)sizeof(double) : 0;
+    if (MPI_Win_allocate_shared(bytes, sizeof(double), MPI_INFO_NULL, c, &p, &w) != MPI_SUCCESS)
+        return FFC_ERR_MEMORY;
+    MPI_Aint size = 0;
+    int unit = 0;
+    if (MPI_Win_shared_query(w, 0, &size, &unit, &p) != MPI_SUCCESS || size < (MPI_Aint)n * (MPI_Aint)sizeof(double)) {
+        MPI_Win_free(&w);
+        return FFC_ERR_MEMORY;
+    }
+    *base = p;
+    *win = (int)MPI_Win_c2f(w);
+    return FFC_OK;
+}
+
+void ffc__mpi_shared_sync(int win)
+{
+    MPI_Win_fence(0, MPI_Win_f2c((MPI_Fint)win));
+}
+
+void ffc__mpi_shared_free(int win)
+{
+    if (!running()) return;   /* (after MPI_Finalize: the process's end frees it) */
+    MPI_Win w = MPI_Win_f2c((MPI_Fint)win);
+    MPI_Win_free(&w);
+}
+
 #else
 
 int ffc_mpi_world(int *rank, int *size, int *fcomm)
@@ -207,7 +300,47 @@ int ffc__mpi_allgather(int fcomm, double buf[], const long count[])
     return FFC_OK;
 }
 
+int ffc__mpi_node(int fcomm, int *ncomm, int *rank, int *size)
+{
+    (void)fcomm;
+    *ncomm = 0;
+    *rank = 0;
+    *size = 1;
+    return FFC_OK;
+}
+
+void ffc__mpi_comm_free(int fcomm) { (void)fcomm; }
+
+int ffc__mpi_bcast(int fcomm, double v[], long n, int idle)
+{
+    (void)fcomm; (void)v; (void)n; (void)idle;
+    return FFC_OK;
+}
+
+int ffc__mpi_shared(int fcomm, long n, double **base, int *win)
+{
+    (void)fcomm; (void)n;
+    *base = NULL;
+    *win = 0;
+    return FFC_ERR_UNAVAILABLE;
+}
+
+void ffc__mpi_shared_sync(int win) { (void)win; }
+
+void ffc__mpi_shared_free(int win) { (void)win; }
+
 #endif
+
+int ffc__blas_threads(int n)
+{
+    /* OpenBLAS's own calls, found in the process (none: another BLAS, left alone) */
+    union { void *p; int (*f)(void); } get = {dlsym(RTLD_DEFAULT, "openblas_get_num_threads")};
+    union { void *p; void (*f)(int); } set = {dlsym(RTLD_DEFAULT, "openblas_set_num_threads")};
+    if (!get.p || !set.p) return 0;
+    const int old = get.f();
+    if (n > 0) set.f(n);
+    return old;
+}
 
 double ffc_peak_mb(void)
 {

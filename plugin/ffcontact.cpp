@@ -1736,7 +1736,8 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "factorTime") return in.t_factor;
     if (k == "columnsTime") return in.t_columns;
     if (k == "reused") return in.reused;
-    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, reused");
+    if (k == "factorRanks") return in.factor_ranks;
+    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, reused, factorRanks");
     return 0;
 }
 

@@ -358,16 +358,19 @@ static void test_shared_lu(void **state)
  * and H (same bits) as one process's computing them all, in the same
  * order; C grown in two calls (72 columns, two blocks of solves on one
  * process; then 30: the shares are uneven on 4 ranks), some columns
- * outside the rows R.  Tolerance: the
- * same solves of the same factor, 1e-14 of K^-1's largest entry. */
-static void test_replicated_columns(void **state)
+ * outside the rows R.  The ranks (one machine) share one factor, made by
+ * rank 0 with their BLAS threads.  Without Dirichlet rows (tgv 0) K is
+ * singular: rank 0's factorization fails, and every rank returns it, as
+ * one process does.  Tolerance: the same solves of
+ * factors that differ by the threads' order of sums, 1e-14 of K^-1's
+ * largest entry (K's condition below 1e3). */
+static void replicated_columns(double tgv)
 {
-    (void)state;
     enum { LN = 6, LD = 3 * LN * LN * LN, NT = 40 * LN * LN * LN, C1 = LATTICE_C1, C2 = LATTICE_C2, CT = C1 + C2,
            NR = 3 * LN * LN };
     long *Li = malloc(NT * sizeof(long)), *Lj = malloc(NT * sizeof(long)), bad = -1;
     double *Lv = malloc(NT * sizeof(double));
-    const long nt = test_lattice(LN, 1e30, Li, Lj, Lv, NULL);
+    const long nt = test_lattice(LN, tgv, Li, Lj, Lv, NULL);
     long rows[NR], nd1[C1], nd2[C2];
     test_lattice_sets(LN, rows, nd1, nd2);
     int fc, ranks;
@@ -377,8 +380,17 @@ static void test_replicated_columns(void **state)
         assert_int_equal(ffc__bulk_create(LD, nt, Li, Lj, Lv, 1000, &b[k], &bad), FFC_OK);
         if (k == 1) assert_int_equal(ffc__bulk_set_replicated(b[k], fc), FFC_OK);
         ffc__bulk_set_columns_mode(b[k], 1, 1);
+        if (tgv == 0.0) {   /* refused alike on one process and on every rank; the factor's memory freed */
+            assert_int_equal(ffc__bulk_columns(b[k], NR, rows, C1, nd1, &bad), FFC_ERR_SINGULAR);
+            continue;
+        }
         assert_int_equal(ffc__bulk_columns(b[k], NR, rows, C1, nd1, &bad), FFC_OK);
         assert_int_equal(ffc__bulk_columns(b[k], NR, rows, C2, nd2, &bad), FFC_OK);
+    }
+    if (tgv == 0.0) {
+        for (int k = 0; k < 2; k++) ffc__bulk_free(b[k]);
+        free(Li); free(Lj); free(Lv);
+        return;
     }
     const long *dof[2];
     const double *G[2], *H[2];
@@ -391,7 +403,9 @@ static void test_replicated_columns(void **state)
     ffc_solve_info in;
     ffc__bulk_info(b[1], &in);
     assert_int_equal(in.ranks, ranks);
+    assert_int_equal(in.factor_ranks, ranks);   /* (mpiexec on one machine) */
     assert_int_equal(in.columns, CT);
+    assert_int_equal(in.factorizations, 1);
     if (ranks > 1) assert_true(in.backsolves < CT);   /* each rank solved its share only */
     double gmax = 0.0, d = 0.0;
     for (long j = 0; j < CT; j++) {
@@ -415,6 +429,13 @@ static void test_replicated_columns(void **state)
     free(g);
     for (int k = 0; k < 2; k++) ffc__bulk_free(b[k]);
     free(Li); free(Lj); free(Lv);
+}
+
+static void test_replicated_columns(void **state)
+{
+    (void)state;
+    replicated_columns(1e30);
+    replicated_columns(0.0);
 }
 
 static void test_bad_engine(void **state)
