@@ -396,11 +396,6 @@ static int backsolve(ffc__bulk *b, const double rhs[], double y[])
     return FFC_OK;
 }
 
-/* the factorization of K' + S, S = diag(sh) on the dofs nd[nnew], K' = K
- * with each Dirichlet row and column replaced by kfree on the diagonal (the
- * values of those dofs are moved to the right-hand side: the same solution
- * as the tgv rows' to within 1/tgv, and a factor whose pivots show a
- * singular K: its estimated reciprocal condition below 1e-12 is refused) */
 /* The numeric factorization of A into the analysed b->L; b->info.rcond */
 static int numeric(ffc__bulk *b, cholmod_sparse *A)
 {
@@ -464,6 +459,11 @@ static int numeric_on_node(ffc__bulk *b, cholmod_sparse *A)
     return (int)head[0];
 }
 
+/* the factorization of K' + S, S = diag(sh) on the dofs nd[nnew], K' = K
+ * with each Dirichlet row and column replaced by kfree on the diagonal (the
+ * values of those dofs are moved to the right-hand side: the same solution
+ * as the tgv rows' to within 1/tgv, and a factor whose pivots show a
+ * singular K: its estimated reciprocal condition below 1e-12 is refused) */
 static int factorize_timed(ffc__bulk *b, long nnew, const long nd[])
 {
     if (!b->started) {
