@@ -35,8 +35,12 @@ static inline void ffc__cross(const double a[3], const double b[3], double c[3])
 double ffc__facet_size2(const double X[][3]);
 
 #include "ffc.h"
-/* Foot on the facet's extension (no clamping): xi = xi_free. */
+/* Foot on the facet's extension (no clamping): xi = xi_free; _from starts
+ * a curved facet's Newton iteration at xi0 (a foot of the same point
+ * found before) instead of the vertex triangle's solution (xi0 NULL: the
+ * same as ffc__project_free; straight facets: closed form, xi0 unused). */
 int ffc__project_free(int nn, const double X[][3], const double p[3], ffc_proj *out);
+int ffc__project_free_from(int nn, const double X[][3], const double p[3], const double xi0[2], ffc_proj *out);
 
 /* LU with partial pivoting of the column-major A[m*m] in place, then b =
  * A^-1 b (LAPACK); piv[m] work.  FFC_ERR_SINGULAR for a pivot below 1e-15

@@ -77,9 +77,10 @@ typedef struct {
     nfn_t *T;        /* [nv] friction at the nodes (NULL without friction) */
 } nodal_t;
 
-/* ffc_normal.c: geometry of one link (D = dG/du when D != NULL) */
+/* ffc_normal.c: geometry of one link (D = dG/du when D != NULL; xm0: a
+ * foot found before, the start of a curved master's projection, or NULL) */
 int ffc__link_geometry(const ffc_effects *fx, int ns, const double Xs[][3], const double Xs0[][3],
-                       const double xs[2], double w, int nm, const double Xm[][3],
+                       const double xs[2], double w, int nm, const double Xm[][3], const double xm0[2],
                        ffc_link_state *st, lgeo_t *g, double D[FFC_MAXDOF][FFC_MAXDOF]);
 
 /* ffc_friction.c: the slip r of a link and its derivative Q = dr/du */

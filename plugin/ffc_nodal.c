@@ -151,8 +151,8 @@ int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw
         e->nd = ln.nd;
         ffc_link_state st;
         lgeo_t g;
-        s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), lk->xs, ffc__link_weight(lk, qw), P->nm, CP3(ln.Xm), &st, &g,
-                               NULL);
+        s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), lk->xs, ffc__link_weight(lk, qw), P->nm, CP3(ln.Xm), lk->xm,
+                               &st, &g, NULL);
         if (s) { *bad = k; ffc__nodal_free(w); return s; }
         memcpy(e->G, g.G, sizeof e->G);
         memcpy(e->dda, g.dda, sizeof e->dda);
@@ -372,7 +372,7 @@ static int segment_motion(const ffc_effects *fx, const ffc_pair *P, const ffc_la
         int s = ffc__gather_link(fx, P, 0, &tmp, &ln);
         ffc_link_state st;
         lgeo_t g;
-        if (!s) s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), tmp.xs, 1.0, P->nm, CP3(ln.Xm), &st, &g, NULL);
+        if (!s) s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), tmp.xs, 1.0, P->nm, CP3(ln.Xm), NULL, &st, &g, NULL);
         if (s) { *bad = b; return s; }
         nedge_t *e = &E[b];
         e->g = st.gap;
@@ -583,8 +583,8 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
         ffc_link_state sg;
         lgeo_t g;
         if (!s)
-            s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), lk->xs, ffc__link_weight(lk, qw), P->nm, CP3(ln.Xm), &sg,
-                                   &g, D);
+            s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), lk->xs, ffc__link_weight(lk, qw), P->nm, CP3(ln.Xm),
+                                   lk->xm, &sg, &g, D);
         if (s) { *bad = E->k; ffc__nodal_free(&w); return s; }
         for (int a = 0; a < E->nd; a++)
             for (int b = 0; b < E->nd; b++) D[a][b] = -t * (E->da * D[a][b] + E->G[a] * E->dda[b]);

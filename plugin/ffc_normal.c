@@ -19,7 +19,7 @@
  *     d da / d x_a = w J N1_a,alpha tau^alpha
  * when the area element follows the deformation (finite_def). */
 int ffc__link_geometry(const ffc_effects *fx, int ns, const double Xs[][3], const double Xs0[][3],
-                       const double xs[2], double w, int nm, const double Xm[][3],
+                       const double xs[2], double w, int nm, const double Xm[][3], const double xm0[2],
                        ffc_link_state *st, lgeo_t *g, double D[FFC_MAXDOF][FFC_MAXDOF])
 {
     const int nd = 3 * (ns + nm);
@@ -36,7 +36,7 @@ int ffc__link_geometry(const ffc_effects *fx, int ns, const double Xs[][3], cons
     s = ffc_facet_point(ns, fx->finite_def ? Xs : Xs0, xs, &sp);
     if (s) return s;
     ffc_proj pr;
-    s = ffc__project_free(nm, Xm, p, &pr);
+    s = ffc__project_free_from(nm, Xm, p, xm0, &pr);
     if (s) return s;
     memset(st, 0, sizeof *st);
     for (int i = 0; i < 3; i++) { st->x[i] = p[i]; st->n[i] = pr.n[i]; }
@@ -101,7 +101,7 @@ int ffc_link_contact(const ffc_effects *effects, int ns, const double Xs[][3],
     if (K)
         for (int k = 0; k < nd; k++) memset(K[k], 0, (size_t)nd * sizeof K[k][0]);
     lgeo_t g;
-    int s = ffc__link_geometry(effects, ns, Xs, Xs0, xs, w, nm, Xm, st, &g, K && !law->material_only ? K : NULL);
+    int s = ffc__link_geometry(effects, ns, Xs, Xs0, xs, w, nm, Xm, NULL, st, &g, K && !law->material_only ? K : NULL);
     if (s) return s;
     const double trial = lambda - eps * st->gap;
     st->active = trial > 0.0;

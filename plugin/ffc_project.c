@@ -174,6 +174,11 @@ static double edge_min(int nn, const double X[][3], const double p[3], int e,
  * where = FFC_FOOT_INSIDE. */
 int ffc__project_free(int nn, const double X[][3], const double p[3], ffc_proj *out)
 {
+    return ffc__project_free_from(nn, X, p, NULL, out);
+}
+
+int ffc__project_free_from(int nn, const double X[][3], const double p[3], const double xi0[2], ffc_proj *out)
+{
     if (!X || !p || !out) return FFC_ERR_NULL;
     if (nn != 3 && nn != 6) return FFC_ERR_NODES;
     for (int i = 0; i < 3; i++)
@@ -202,6 +207,10 @@ int ffc__project_free(int nn, const double X[][3], const double p[3], ffc_proj *
     double xi[2] = {ffc__dot(a, c) / det, ffc__dot(b, c) / det};
     out->iters = 0;
     if (nn == 6) {
+        if (xi0 && isfinite(xi0[0]) && isfinite(xi0[1])) {
+            xi[0] = xi0[0];
+            xi[1] = xi0[1];
+        }
         int st = newton_free(nn, X, p, xi, &out->iters, h2);
         if (st) return st;
     }

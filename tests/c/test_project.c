@@ -1,6 +1,7 @@
 /* test_project.c: closest-point projection onto 3- and 6-node facets and
  * the derivatives of foot, gap and normal against central differences. */
 #include "ffc_test.h"
+#include "ffc_internal.h"   /* (internal: the free foot from a start) */
 
 #include <string.h>
 
@@ -292,6 +293,44 @@ static void test_far_free_foot(void **state)
     assert_close(p6.gap, p3.gap, 1e-12);
 }
 
+/* The free foot on a curved facet started at a foot found before
+ * (ffc__project_free_from: a link's stored foot): from the foot itself,
+ * the same foot in one Newton step; from a start 0.2 away, the same
+ * stationary point; a non-finite start is the vertex triangle's.  Points
+ * above and below a sphere facet; tolerance 1e-13 in xi (Newton's
+ * stopping test, 1e-13 of the coordinates, on a quadratically converging
+ * sequence). */
+static void test_warm_start(void **state)
+{
+    (void)state;
+    uint64_t s = 91;
+    double X[6][3];
+    test_sphere_facet(1.0, 0.8, X);
+    const double bad[2] = {NAN, 0.0};
+    for (int trial = 0; trial < 200; trial++) {
+        ffc_point g;
+        const double xi[2] = {test_rand(&s, 0.0, 0.6), test_rand(&s, 0.0, 0.4)};
+        ffc_facet_point(6, (const double(*)[3])X, xi, &g);
+        double p[3];
+        const double off = test_rand(&s, -0.05, 0.05);
+        for (int i = 0; i < 3; i++) p[i] = g.x[i] + off * g.n[i];
+        ffc_proj cold, warm, near, nan0;
+        assert_int_equal(ffc__project_free(6, (const double(*)[3])X, p, &cold), FFC_OK);
+        assert_int_equal(ffc__project_free_from(6, (const double(*)[3])X, p, cold.xi_free, &warm), FFC_OK);
+        const double x0[2] = {cold.xi_free[0] + 0.2, cold.xi_free[1] - 0.15};
+        assert_int_equal(ffc__project_free_from(6, (const double(*)[3])X, p, x0, &near), FFC_OK);
+        assert_int_equal(ffc__project_free_from(6, (const double(*)[3])X, p, bad, &nan0), FFC_OK);
+        assert_true(warm.iters <= 1);
+        for (int a = 0; a < 2; a++) {
+            assert_close(cold.xi_free[a], xi[a], 1e-12);
+            assert_close(warm.xi_free[a], cold.xi_free[a], 1e-13);
+            assert_close(near.xi_free[a], cold.xi_free[a], 1e-13);
+            assert_true(nan0.xi_free[a] == cold.xi_free[a]);
+        }
+        assert_close(warm.gap, cold.gap, 1e-13);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -303,6 +342,7 @@ int main(void)
         cmocka_unit_test(test_deriv_rejects_clamped),
         cmocka_unit_test(test_curved_foot_precision),
         cmocka_unit_test(test_far_free_foot),
+        cmocka_unit_test(test_warm_start),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
