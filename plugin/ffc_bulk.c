@@ -406,14 +406,16 @@ static int numeric(ffc__bulk *b, cholmod_sparse *A)
     return b->info.rcond >= 1e-12 ? FFC_OK : FFC_ERR_SINGULAR;
 }
 
-/* The same on the ranks of one machine (replicated bulk, a supernodal L):
- * L's values in memory they share; their rank 0 factorizes into it with as
- * many BLAS threads as they are ranks, while the others wait without
- * spinning, and every rank then solves with the one factor (one copy per
- * machine instead of one per rank).  L's structure, from the same analysis
- * of the same matrix, is the same on every rank: checked first, and where
- * it is not (or the shared memory is refused), each rank factorizes for
- * itself. */
+/* The same on the ranks of each machine (replicated bulk, a supernodal L,
+ * every rank with a machine-mate; called on every rank): L's values in
+ * memory the machine's ranks share; their rank 0 factorizes into it with
+ * BLAS threads, while the others wait without spinning, and every rank
+ * then solves with the one factor (one copy per machine instead of one
+ * per rank).  The threads are the fewest ranks any machine has, so that
+ * every machine's factor has the same bits.  L's structure, from the same
+ * analysis of the same matrix, is the same on every rank: checked first,
+ * and where it is not on some machine (or its shared memory is refused),
+ * every rank factorizes for itself.  The decisions are every rank's. */
 static int numeric_on_node(ffc__bulk *b, cholmod_sparse *A)
 {
     const cholmod_factor *L = b->L;
@@ -423,14 +425,16 @@ static int numeric_on_node(ffc__bulk *b, cholmod_sparse *A)
     memcpy(s0, sig, sizeof sig);
     int st = ffc__mpi_bcast(b->ncomm, s0, 4, 0);
     if (st) return st;
-    if (!ffc__mpi_min(b->ncomm, memcmp(s0, sig, sizeof sig) == 0)) return numeric(b, A);
     double *x = NULL;
     int win = 0;
-    st = ffc__mpi_shared(b->ncomm, (long)L->xsize, &x, &win);
-    if (!ffc__mpi_min(b->ncomm, st == FFC_OK)) {
-        if (!st) ffc__mpi_shared_free(win);
+    const int same = ffc__mpi_min(b->ncomm, memcmp(s0, sig, sizeof sig) == 0);   /* (alike on the machine) */
+    if (same) st = ffc__mpi_shared(b->ncomm, (long)L->xsize, &x, &win);
+    const int got = same && ffc__mpi_min(b->ncomm, st == FFC_OK);
+    if (!all_ranks(b, got)) {
+        if (got) ffc__mpi_shared_free(win);
         return numeric(b, A);
     }
+    const int threads = ffc__mpi_min(b->rcomm, b->nsize);
     b->wbase = x;
     b->win = win;
     /* L made numeric (its values not yet touched), the values moved to the shared memory */
@@ -440,10 +444,10 @@ static int numeric_on_node(ffc__bulk *b, cholmod_sparse *A)
         cholmod_free(b->L->xsize, sizeof(double), b->L->x, &b->cc);
         b->L->x = x;
     }
-    if (!ffc__mpi_min(b->ncomm, st == FFC_OK)) return st ? st : FFC_ERR_MEMORY;
+    if (!all_ranks(b, st == FFC_OK)) return st ? st : FFC_ERR_MEMORY;
     double head[2] = {0.0, 0.0};   /* rank 0's status and rcond */
     if (b->nrank == 0) {
-        const int old = ffc__blas_threads(b->nsize);
+        const int old = ffc__blas_threads(threads);
         head[0] = numeric(b, A);
         ffc__blas_threads(old);
         if (head[0] == FFC_OK && b->L->x != x) {   /* (CHOLMOD put the values elsewhere) */
@@ -507,7 +511,12 @@ static int factorize_timed(ffc__bulk *b, long nnew, const long nd[])
         }
     }
     cholmod_free_triplet(&T, &b->cc);
-    if (!st && !b->mp) st = b->nsize > 1 && b->L->is_super ? numeric_on_node(b, A) : numeric(b, A);
+    if (!b->mp) st = agree(b, st);   /* (every rank analysed A, or none goes on) */
+    if (!st && !b->mp) {
+        /* one factor per machine when every rank has a machine-mate */
+        const int node = b->rsize > 1 && all_ranks(b, b->L->is_super && b->nsize > 1);
+        st = node ? numeric_on_node(b, A) : numeric(b, A);
+    }
     if (A) cholmod_free_sparse(&A, &b->cc);
     if (!st) {
         b->B = cholmod_zeros((size_t)b->n, 1, CHOLMOD_REAL, &b->cc);

@@ -174,7 +174,6 @@ int ffc__mpi_node(int fcomm, int *ncomm, int *rank, int *size)
     if (MPI_Comm_split_type(MPI_Comm_f2c((MPI_Fint)fcomm), MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &c) !=
         MPI_SUCCESS)
         return FFC_ERR_UNAVAILABLE;
-    MPI_Comm_set_errhandler(c, MPI_ERRORS_RETURN);   /* (shared memory refused: a status, not an abort) */
     MPI_Comm_rank(c, rank);
     MPI_Comm_size(c, size);
     *ncomm = (int)MPI_Comm_c2f(c);
@@ -228,8 +227,10 @@ int ffc__mpi_shared(int fcomm, long n, double **base, int *win)
     MPI_Win w;
     double *p = NULL;
     const MPI_Aint bytes = rank == 0 ? (MPI_Aint)n * (MPI_Aint)sizeof(double) : 0;
-    if (MPI_Win_allocate_shared(bytes, sizeof(double), MPI_INFO_NULL, c, &p, &w) != MPI_SUCCESS)
-        return FFC_ERR_MEMORY;
+    MPI_Comm_set_errhandler(c, MPI_ERRORS_RETURN);   /* (shared memory refused: a status, not an abort) */
+    const int e = MPI_Win_allocate_shared(bytes, sizeof(double), MPI_INFO_NULL, c, &p, &w);
+    MPI_Comm_set_errhandler(c, MPI_ERRORS_ARE_FATAL);
+    if (e != MPI_SUCCESS) return FFC_ERR_MEMORY;
     MPI_Aint size = 0;
     int unit = 0;
     if (MPI_Win_shared_query(w, 0, &size, &unit, &p) != MPI_SUCCESS || size < (MPI_Aint)n * (MPI_Aint)sizeof(double)) {
