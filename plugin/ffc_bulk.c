@@ -148,6 +148,13 @@ static void prune_free(ffc__bulk *b)
     b->swcap = 0;
 }
 
+/* the machine's communicator released (ranks alone again) */
+static void node_free(ffc__bulk *b)
+{
+    if (b->nsize > 1) ffc__mpi_comm_free(b->ncomm);
+    b->nsize = 1;
+}
+
 static void bulk_free_factor(ffc__bulk *b)
 {
     if (!b->started) return;
@@ -178,7 +185,7 @@ void ffc__bulk_free(ffc__bulk *b)
     free(b->Gc); free(b->ti); free(b->tj); free(b->tv); free(b->Mw); free(b->Gw);
     free(b->rows); free(b->rpos); free(b->H); free(b->bprev); free(b->xprev);
     free(b->kdof); free(b->klu); free(b->kpiv); free(b->gv); free(b->rcount);
-    if (b->nsize > 1) ffc__mpi_comm_free(b->ncomm);
+    node_free(b);
     free(b);
 }
 
@@ -299,8 +306,7 @@ int ffc__bulk_set_mumps(ffc__bulk *b, int fcomm)
     ffc__mumps_free(b->mp);
     b->mp = m;
     b->rsize = 1;
-    if (b->nsize > 1) ffc__mpi_comm_free(b->ncomm);
-    b->nsize = 1;
+    node_free(b);
     shared_lu(b, fcomm, 1);
     return FFC_OK;
 }
@@ -321,8 +327,7 @@ int ffc__bulk_set_replicated(ffc__bulk *b, int fcomm)
     b->rcomm = fcomm;
     b->rrank = rank;
     b->rsize = size;
-    if (b->nsize > 1) ffc__mpi_comm_free(b->ncomm);
-    b->nsize = 1;
+    node_free(b);
     int nc = 0, nr = 0, ns = 1;
     if (size > 1 && ffc__mpi_node(fcomm, &nc, &nr, &ns) == FFC_OK) {
         b->ncomm = nc;
@@ -423,7 +428,7 @@ static int numeric_on_node(ffc__bulk *b, cholmod_sparse *A)
     const int *perm = L->Perm;
     for (size_t k = 0; k < L->n; k++) sig[3] += (double)perm[k] * (double)((k % 1021) + 1);
     memcpy(s0, sig, sizeof sig);
-    int st = ffc__mpi_bcast(b->ncomm, s0, 4, 0);
+    int st = ffc__mpi_bcast_idle(b->ncomm, s0, 4);
     if (st) return st;
     double *x = NULL;
     int win = 0;
@@ -457,7 +462,7 @@ static int numeric_on_node(ffc__bulk *b, cholmod_sparse *A)
         }
         head[1] = b->info.rcond;
     }
-    if ((st = ffc__mpi_bcast(b->ncomm, head, 2, 1))) return st;
+    if ((st = ffc__mpi_bcast_idle(b->ncomm, head, 2))) return st;
     ffc__mpi_shared_sync(win);   /* (rank 0's values seen by every rank) */
     b->info.rcond = head[1];
     return (int)head[0];

@@ -82,11 +82,11 @@ int ffc__mpi_allgather(int fcomm, double buf[], const long count[]);
 /* The ranks of fcomm on this process's machine (shared memory), as a new
  * communicator *ncomm (its Fortran handle; ffc__mpi_comm_free), with this
  * rank and their count there (one process: 0 and 1, no communicator).
- * n doubles broadcast from rank 0 of fcomm; idle = 1: the other ranks wait
- * without spinning, leaving their cores to rank 0's threads. */
+ * n doubles broadcast from rank 0 of fcomm, the other ranks waiting
+ * without spinning (leaving their cores to rank 0's threads). */
 int ffc__mpi_node(int fcomm, int *ncomm, int *rank, int *size);
 void ffc__mpi_comm_free(int fcomm);
-int ffc__mpi_bcast(int fcomm, double v[], long n, int idle);
+int ffc__mpi_bcast_idle(int fcomm, double v[], int n);
 /* n doubles of memory shared by the ranks of fcomm (one machine; a
  * collective call): held by its rank 0, *base on every rank, *win the
  * handle for ffc__mpi_shared_free (collective too); after a rank wrote

@@ -187,32 +187,20 @@ void ffc__mpi_comm_free(int fcomm)
     MPI_Comm_free(&c);
 }
 
-int ffc__mpi_bcast(int fcomm, double v[], long n, int idle)
+int ffc__mpi_bcast_idle(int fcomm, double v[], int n)
 {
     if (!running()) return FFC_OK;
-    const MPI_Comm c = MPI_Comm_f2c((MPI_Fint)fcomm);
-    const long piece = 1L << 28;   /* (MPI's counts are int) */
-    long off = 0;
-    do {
-        const int k = (int)(n - off < piece ? n - off : piece);
-        off += k;
-        if (!idle) {   /* (the blocking call: much faster on large messages than the non-blocking one) */
-            if (MPI_Bcast(v + off - k, k, MPI_DOUBLE, 0, c) != MPI_SUCCESS) return FFC_ERR_UNAVAILABLE;
-            continue;
+    MPI_Request rq;
+    if (MPI_Ibcast(v, n, MPI_DOUBLE, 0, MPI_Comm_f2c((MPI_Fint)fcomm), &rq) != MPI_SUCCESS) return FFC_ERR_UNAVAILABLE;
+    for (int done = 0; !done;) {
+        /* a rank waiting for another's long computation yields its core
+         * to it (MPI's own wait would spin on it) */
+        if (MPI_Test(&rq, &done, MPI_STATUS_IGNORE) != MPI_SUCCESS) return FFC_ERR_UNAVAILABLE;
+        if (!done) {
+            const struct timespec pause = {0, 500000};   /* 0.5 ms */
+            nanosleep(&pause, NULL);
         }
-        MPI_Request rq;
-        if (MPI_Ibcast(v + off - k, k, MPI_DOUBLE, 0, c, &rq) != MPI_SUCCESS) return FFC_ERR_UNAVAILABLE;
-        int done = 0;
-        while (!done) {
-            /* a rank waiting for another's long computation yields its core
-             * to it (MPI's own wait would spin on it) */
-            if (MPI_Test(&rq, &done, MPI_STATUS_IGNORE) != MPI_SUCCESS) return FFC_ERR_UNAVAILABLE;
-            if (!done) {
-                const struct timespec pause = {0, 500000};   /* 0.5 ms */
-                nanosleep(&pause, NULL);
-            }
-        }
-    } while (off < n);
+    }
     return FFC_OK;
 }
 
@@ -312,9 +300,9 @@ int ffc__mpi_node(int fcomm, int *ncomm, int *rank, int *size)
 
 void ffc__mpi_comm_free(int fcomm) { (void)fcomm; }
 
-int ffc__mpi_bcast(int fcomm, double v[], long n, int idle)
+int ffc__mpi_bcast_idle(int fcomm, double v[], int n)
 {
-    (void)fcomm; (void)v; (void)n; (void)idle;
+    (void)fcomm; (void)v; (void)n;
     return FFC_OK;
 }
 
