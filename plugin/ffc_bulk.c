@@ -1563,11 +1563,11 @@ static int direction_ranked(ffc__bulk *b, long nt, const double rho[], double dy
         for (long e = start[2 * k]; e < start[2 * k + 1]; e++) axpy(m, val[e], b->G + idx[e] * ld, gu);
     }
     if (split && (st = ffc__mpi_allgather(b->rcomm, GU, b->rcount))) return st;
-    /* S = I + V^T G U, wv = -V^T q */
-    for (long k = 0; k < pt; k++) {
-        wv[k] = -list_dot(start, idx, val, 2 * k + 1, q);
-        for (long l = 0; l < pt; l++) S[k + l * pt] = (k == l) + list_dot(start, idx, val, 2 * k + 1, GU + l * m);
-    }
+    /* S = I + V^T G U, wv = -V^T q; S column by column (one column of G U
+     * read for all of V's columns) */
+    for (long k = 0; k < pt; k++) wv[k] = -list_dot(start, idx, val, 2 * k + 1, q);
+    for (long l = 0; l < pt; l++)
+        for (long k = 0; k < pt; k++) S[k + l * pt] = (k == l) + list_dot(start, idx, val, 2 * k + 1, GU + l * m);
     st = ffc__lu_solve(pt, S, piv, wv);
     if (st) return st;
     /* dy = -q - G U w;  dz = -rho - U (V^T dy) */
