@@ -470,6 +470,22 @@ typedef struct {
                           needs dual NULL, nedge 0 and linear slave facets (else
                           ignored); the weighted gap and the pressure keep N_a.
                           0: the friction sums use the normal part's shape values */
+    const unsigned char *lsel; /* [nl] or NULL (every link): the nodal law's residual,
+                          statistics and ranked tangent (FFC_TANGENT_NONE or
+                          FFC_TANGENT_RANKED; not with dual, nedge or another
+                          tangent: FFC_ERR_VALUE) from the links k with lsel[k]
+                          != 0 only, a share of them: the shares' sums are the
+                          whole's, with nsum completing the node sums */
+    int (*nsum)(void *ctx, int st, long n, double buf[]);
+                       /* with lsel: called once per assembly, on every path, with
+                          this share's status st and its partial node sums buf[n]
+                          (8 per node of the linked links' slave facets, ascending
+                          node index:
+                          G_a, W_a, the weighted slip's and normal's sums); it
+                          replaces buf by the sums over every share and returns
+                          their combined status (FFC_OK only when every share's
+                          st is; buf may be NULL when st is not FFC_OK) */
+    void *nsum_ctx;    /* nsum's first argument */
 } ffc_law;
 
 /* ------------------------------------------------------ Coulomb friction */
@@ -952,6 +968,11 @@ typedef struct {
     int own;             /* ffc_parallel_solve: 0, every rank passes the same entries (each hands
                             MUMPS its share); 1, each rank passes its own (A is their sum: a
                             matrix assembled on each rank's part of the mesh) */
+    int links;           /* ffc_scene_set_parallel: 1, the condensed Newton's contact evaluations
+                            (augmented Lagrangian pairs with nodal multipliers, no mortar segments,
+                            the residual and the ranked tangent) shared out, each rank the links of
+                            its share of the slave facets, their sums gathered in rank order; 0,
+                            every rank evaluates every link */
 } ffc_parallel;
 /* Sets the engine of the next ffc_scene_set_bulk.  FFC_ERR_VALUE for an
  * unknown engine, FFC_ERR_UNAVAILABLE for MUMPS or the replicated CHOLMOD
@@ -1073,6 +1094,7 @@ typedef struct {
 typedef struct {
     int iters;         /* Newton iterations (condensed linear solves) */
     int evals;         /* contact evaluations */
+    int evals_shared;  /* of them, those whose links the ranks shared out (ffc_parallel.links) */
     double t_eval;     /* wall time of those evaluations (seconds) */
     int fallbacks;     /* directions taken from the material tangent */
     int switched;      /* 1: FFC_TANGENT_RANKED gave way to the consistent tangent (two ranked

@@ -152,6 +152,8 @@ int ffc__common_checks(const ffc_effects *fx, const ffc_pair *P, int qdeg, long 
             if (!isfinite(e->xs[0]) || !isfinite(e->xs[1])) { *bad = b; return FFC_ERR_NONFINITE; }
         }
     }
+    if (law->lsel && !law->nodal) return FFC_ERR_VALUE;
+    if (law->lsel && !law->nsum) return FFC_ERR_NULL;
     if (law->dual) {
         if (!law->nodal) return FFC_ERR_VALUE;
         for (long k = 0; k < 9 * P->nfs; k++)

@@ -117,6 +117,56 @@ static void multiplier_shape(const ffc_law *law, int ns, long f, const double xs
 
 /* pass 1: geometry of every linked point, nodal sums and pressures; with
  * friction (lam_t != NULL) the slips and the nodal return maps */
+/* A share of the links (law->lsel): its partial node sums G_a, W_a and the
+ * weighted slip's and normal's sums, 8 per node of the linked links' slave
+ * facets in ascending node order, completed by law->nsum into every share's; called
+ * with the share's status st on every path (the shares wait for each
+ * other there).  Returns the shares' combined status. */
+static int share_sums(const ffc_pair *P, long nl, const ffc_link links[], const ffc_law *law, int st, nodal_t *w)
+{
+    /* the nodes of the linked links' slave facets (every share's alike) */
+    unsigned char *mark = st ? NULL : calloc((size_t)(P->nv > 0 ? P->nv : 1), 1);
+    long *v = NULL, nn = 0;
+    if (mark) {
+        long nm = 0;
+        for (long k = 0; k < nl; k++)
+            if (links[k].mf >= 0)
+                for (int a = 0; a < P->ns; a++) {
+                    unsigned char *m = &mark[P->Fs[links[k].sf * P->ns + a]];
+                    nm += !*m;
+                    *m = 1;
+                }
+        v = malloc((size_t)(nm > 0 ? nm : 1) * sizeof *v);
+        for (long i = 0; i < P->nv && v; i++)
+            if (mark[i]) v[nn++] = i;
+        free(mark);
+    }
+    double *buf = v ? malloc((size_t)(8 * nn > 0 ? 8 * nn : 1) * sizeof *buf) : NULL;
+    if (!st && !buf) st = FFC_ERR_MEMORY;
+    for (long i = 0; i < nn && buf; i++) {
+        double *b = buf + 8 * i;
+        b[0] = w->Gn[v[i]];
+        b[1] = w->Wn[v[i]];
+        for (int c = 0; c < 3; c++) {
+            b[2 + c] = w->T ? w->T[v[i]].r[c] : 0.0;
+            b[5 + c] = w->T ? w->T[v[i]].n[c] : 0.0;
+        }
+    }
+    st = law->nsum(law->nsum_ctx, st, st ? 0 : 8 * nn, st ? NULL : buf);
+    for (long i = 0; i < nn && !st; i++) {
+        const double *b = buf + 8 * i;
+        w->Gn[v[i]] = b[0];
+        w->Wn[v[i]] = b[1];
+        for (int c = 0; c < 3 && w->T; c++) {
+            w->T[v[i]].r[c] = b[2 + c];
+            w->T[v[i]].n[c] = b[5 + c];
+        }
+    }
+    free(v);
+    free(buf);
+    return st;
+}
+
 int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw[], int nq, long nl,
                        const ffc_link links[], const double lambda[], const double lam_t[], const ffc_law *law,
                        nodal_t *w, ffc_stats *stats, long *bad)
@@ -125,7 +175,7 @@ int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw
     const int tdual = tdual_on(P, law);
     memset(w, 0, sizeof *w);
     long n = 0;
-    for (long k = 0; k < nl; k++) n += links[k].mf >= 0;
+    for (long k = 0; k < nl; k++) n += links[k].mf >= 0 && (!law->lsel || law->lsel[k]);
     w->L = malloc((size_t)(n > 0 ? n : 1) * sizeof *w->L);
     w->Gn = calloc((size_t)P->nv, sizeof *w->Gn);
     w->Wn = calloc((size_t)P->nv, sizeof *w->Wn);
@@ -135,30 +185,27 @@ int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw
         w->F = malloc((size_t)(n > 0 ? n : 1) * sizeof *w->F);
         w->T = calloc((size_t)P->nv, sizeof *w->T);
     }
-    if (!w->L || !w->Gn || !w->Wn || !w->tn || !w->on || (lam_t && (!w->F || !w->T))) {
-        ffc__nodal_free(w);
-        return FFC_ERR_MEMORY;
-    }
-    for (long k = 0; k < nl; k++) {
+    int st = !w->L || !w->Gn || !w->Wn || !w->tn || !w->on || (lam_t && (!w->F || !w->T)) ? FFC_ERR_MEMORY : FFC_OK;
+    for (long k = 0; k < nl && !st; k++) {
         const ffc_link *lk = &links[k];
-        if (lk->mf < 0) continue;
+        if (lk->mf < 0 || (law->lsel && !law->lsel[k])) continue;
         nlink_t *e = &w->L[w->n];
         lnodes_t ln;
         int s = ffc__gather_link(fx, P, nq, lk, &ln);
-        if (s) { *bad = k; ffc__nodal_free(w); return s; }
+        if (s) { *bad = k; st = s; break; }
         memcpy(e->dof, ln.dof, sizeof ln.dof);
         e->k = k;
         e->nd = ln.nd;
-        ffc_link_state st;
+        ffc_link_state ls;
         lgeo_t g;
         s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), lk->xs, ffc__link_weight(lk, qw), P->nm, CP3(ln.Xm), lk->xm,
-                               &st, &g, NULL);
-        if (s) { *bad = k; ffc__nodal_free(w); return s; }
+                               &ls, &g, NULL);
+        if (s) { *bad = k; st = s; break; }
         memcpy(e->G, g.G, sizeof e->G);
         memcpy(e->dda, g.dda, sizeof e->dda);
-        e->g = st.gap;
-        e->da = st.da;
-        for (int i = 0; i < 3; i++) e->n[i] = st.n[i];
+        e->g = ls.gap;
+        e->da = ls.da;
+        for (int i = 0; i < 3; i++) e->n[i] = ls.n[i];
         multiplier_shape(law, P->ns, lk->sf, lk->xs, e->N);
         for (int a = 0; a < P->ns; a++) e->Nt[a] = tdual ? 4.0 * e->N[a] - 1.0 : e->N[a];
         if (lam_t) {
@@ -183,6 +230,8 @@ int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw
         }
         w->n++;
     }
+    if (law->lsel && law->nsum) st = share_sums(P, nl, links, law, st, w);   /* (every share's sums; on every path) */
+    if (st) { ffc__nodal_free(w); return st; }
     for (long v = 0; v < P->nv; v++)
         if (w->Wn[v] > 0.0) {
             double g = w->Gn[v] / w->Wn[v];
@@ -556,6 +605,9 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
     const int material_only = law->material_only != 0, ranked = law->material_only == 2,
               fric = ffc__friction_on(fx, law);
     long nterm = 0; /* ranked: the terms written */
+    /* a share of the links: the residual and the ranked tangent only, whose
+     * terms are sums over links (not the segments' or the dual basis' motion) */
+    if (law->lsel && (law->dual || law->nedge > 0 || (Ti && Tj && Tv && !ranked))) return FFC_ERR_VALUE;
     nodal_t w;
     int s = ffc__nodal_prepare(fx, P, qw, nq, nl, links, lambda, fric ? lam_t : NULL, law, &w, stats, bad);
     if (s) return s;

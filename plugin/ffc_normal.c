@@ -146,6 +146,6 @@ int ffc_link_normal(const ffc_effects *effects, int ns, const double Xs[][3],
     if (!effects) return FFC_ERR_NULL;
     ffc_effects fx = *effects;
     fx.friction = 0;
-    ffc_law law = {eps, 0, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0};
+    ffc_law law = {eps, 0, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
     return ffc_link_contact(&fx, ns, Xs, Xs0, NULL, xs, w, nm, Xm, NULL, lambda, NULL, &law, st, R, K);
 }

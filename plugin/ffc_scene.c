@@ -618,8 +618,221 @@ static void keep_augment_stats(ffc_stats *dst, const ffc_stats *old)
     dst->max_pen_node = old->max_pen_node;
 }
 
+/* The ranks of a communicator sharing out a pair's links (the condensed
+ * Newton's contact evaluations on several ranks): rank r takes the linked
+ * links [n r / size, n (r + 1) / size) of the n in the links' order (by
+ * slave facet: a share is a strip of slave facets); the node sums,
+ * the residual at the pair's dofs, the triplets and the link statistics
+ * are summed over the ranks in rank order, so that every rank gets the
+ * same bits.  Every call below is collective: each rank makes the same
+ * ones, also on failure (the first failing rank's status is every rank's). */
+typedef struct {
+    int comm, rank, size;
+} share_ctx;
+
+/* rank r's n values at buf + r n of all (each rank's own filled), gathered;
+ * every rank's status st first: the first nonzero one in rank order, or
+ * FFC_ERR_SIZE when the counts differ */
+static int share_gather(const share_ctx *c, int st, long n, double all[])
+{
+    double *hd = malloc(2 * (size_t)c->size * sizeof *hd);
+    long *cnt = malloc((size_t)c->size * sizeof *cnt);
+    if (!hd || !cnt) { free(hd); free(cnt); return FFC_ERR_MEMORY; }   /* (MPI aborts the run before malloc fails here) */
+    for (int r = 0; r < c->size; r++) { cnt[r] = 2; hd[2 * r] = hd[2 * r + 1] = 0.0; }
+    hd[2 * c->rank] = st;
+    hd[2 * c->rank + 1] = (double)n;
+    int g = ffc__mpi_allgather(c->comm, hd, cnt);
+    for (int r = 0; r < c->size && !g; r++)
+        if (hd[2 * r] != 0.0) g = (int)hd[2 * r];
+    for (int r = 0; r < c->size && !g; r++)
+        if (hd[2 * r + 1] != (double)n) g = FFC_ERR_SIZE;
+    for (int r = 0; r < c->size; r++) cnt[r] = n;
+    if (!g) g = ffc__mpi_allgather(c->comm, all, cnt);
+    free(hd);
+    free(cnt);
+    return g;
+}
+
+/* ffc_law.nsum: the shares' node sums, added in rank order */
+static int share_nsum(void *ctx, int st, long n, double buf[])
+{
+    const share_ctx *c = ctx;
+    double *all = st ? NULL : malloc((size_t)(c->size * n > 0 ? c->size * n : 1) * sizeof *all);
+    if (!st && !all) st = FFC_ERR_MEMORY;
+    if (all) memcpy(all + c->rank * n, buf, (size_t)n * sizeof *all);
+    st = share_gather(c, st, st ? 0 : n, all);
+    for (long i = 0; i < n && !st; i++) {
+        double t = 0.0;
+        for (int r = 0; r < c->size; r++) t += all[r * n + i];
+        buf[i] = t;
+    }
+    free(all);
+    return st;
+}
+
+/* the distinct nodes of the slave and master facets of a pair's linked
+ * links (where its residual may be nonzero), ascending, into v (room: nv;
+ * mark: nv zeros, left zero); their count */
+static long pair_nodes(const ffc_scene *s, const scene_pair *p, unsigned char mark[], long v[])
+{
+    long lo = s->nv, hi = -1;
+    for (long k = 0; k < p->nl; k++) {
+        const ffc_link *L = &p->links[k];
+        if (L->mf < 0) continue;
+        for (int a = 0; a < 2 * s->nper; a++) {
+            const long x = a < s->nper ? p->Fs[L->sf * s->nper + a] : p->Fm[L->mf * s->nper + a - s->nper];
+            mark[x] = 1;
+            if (x < lo) lo = x;
+            if (x > hi) hi = x;
+        }
+    }
+    long m = 0;
+    for (long i = lo; i <= hi; i++)
+        if (mark[i]) { v[m++] = i; mark[i] = 0; }
+    return m;
+}
+
+/* Pair p's contact on the ranks of c, each its share of the links (law: the
+ * pair's, shared out here): the residual added into R, the triplets into
+ * Ti.. (room: their capacity; *n the count, every rank's), p->st the
+ * statistics; the status is every rank's. */
+static int pair_shared(const ffc_scene *s, scene_pair *p, const share_ctx *c, ffc_law law, const ffc_effects *fx,
+                       const ffc_pair *v, double R[], long room, long Ti[], long Tj[], double Tv[], long *n, long *bad)
+{
+    unsigned char *sel = malloc((size_t)(p->nl > 0 ? p->nl : 1) + (size_t)s->nv);   /* (and the nodes' marks) */
+    long *nodes = malloc((size_t)(s->nv > 0 ? s->nv : 1) * sizeof *nodes);
+    if (sel) memset(sel + (p->nl > 0 ? p->nl : 1), 0, (size_t)s->nv);
+    double *Rp = calloc((size_t)(3 * s->nv), sizeof *Rp);
+    int st = sel && nodes && Rp ? FFC_OK : FFC_ERR_MEMORY;
+    long nloc = 0;
+    if (!st) {
+        /* the linked links (those with a master facet: the others cost
+         * nothing) in equal contiguous shares, in the links' order (by
+         * slave facet) */
+        long nlinked = 0;
+        for (long k = 0; k < p->nl; k++) nlinked += p->links[k].mf >= 0;
+        const long lo = nlinked * c->rank / c->size, hi = nlinked * (c->rank + 1) / c->size;
+        for (long k = 0, j = 0; k < p->nl; k++) {
+            sel[k] = p->links[k].mf >= 0 && j >= lo && j < hi;
+            j += p->links[k].mf >= 0;
+        }
+        law.lsel = sel;
+        law.nsum = share_nsum;
+        law.nsum_ctx = (void *)c;
+        st = ffc_assemble(fx, v, pair_qdeg(p), p->nl, p->links, p->lam, p->lam_t, &law, Rp, room, Ti, Tj, Tv, &nloc,
+                          &p->st, bad);
+    } else {   /* (the node sums' exchange, as the kernel would have made it) */
+        double none = 0.0;
+        share_nsum((void *)c, st, 0, &none);
+    }
+    /* every rank's status and triplet count */
+    const int over = st == FFC_ERR_CAPACITY;
+    long *cnt = malloc((size_t)c->size * sizeof *cnt);
+    double *hd = malloc(3 * (size_t)c->size * sizeof *hd);
+    if (!cnt || !hd) { free(cnt); free(hd); free(sel); free(nodes); free(Rp); return FFC_ERR_MEMORY; }
+    for (int r = 0; r < c->size; r++) { cnt[r] = 3; hd[3 * r] = hd[3 * r + 1] = hd[3 * r + 2] = 0.0; }
+    hd[3 * c->rank] = over ? FFC_OK : st;
+    hd[3 * c->rank + 1] = (double)nloc;
+    hd[3 * c->rank + 2] = over;
+    int g = ffc__mpi_allgather(c->comm, hd, cnt);
+    long total = 0;
+    int anyover = 0;
+    for (int r = 0; r < c->size && !g; r++) {
+        if (hd[3 * r] != 0.0) g = (int)hd[3 * r];
+        total += (long)hd[3 * r + 1];
+        anyover |= hd[3 * r + 2] != 0.0;
+    }
+    *n = total;
+    if (!g && (anyover || total > room)) g = FFC_ERR_CAPACITY;
+    /* the residual at the pair's dofs */
+    const long nn = g ? 0 : pair_nodes(s, p, sel + (p->nl > 0 ? p->nl : 1), nodes), m = 3 * nn;
+    double *all = g ? NULL : malloc((size_t)(c->size * m > 0 ? c->size * m : 1) * sizeof *all);
+    int gs = g == FFC_ERR_CAPACITY ? FFC_OK : g;   /* (capacity: the sums still gathered below, alike) */
+    if (!gs && g != FFC_ERR_CAPACITY) {
+        if (!all) gs = FFC_ERR_MEMORY;
+        for (long i = 0; i < nn && all; i++)
+            for (int k = 0; k < 3; k++) all[c->rank * m + 3 * i + k] = Rp[3 * nodes[i] + k];
+        gs = share_gather(c, gs, gs ? 0 : m, all);
+        for (long i = 0; i < nn && !gs; i++)
+            for (int k = 0; k < 3; k++) {
+                double t = 0.0;
+                for (int r = 0; r < c->size; r++) t += all[r * m + 3 * i + k];
+                R[3 * nodes[i] + k] += t;
+            }
+        /* the triplets, in rank order */
+        double *tr = gs ? NULL : malloc((size_t)(3 * total > 0 ? 3 * total : 1) * sizeof *tr);
+        if (!gs && !ffc__mpi_min(c->comm, tr != NULL)) gs = FFC_ERR_MEMORY;   /* (alike on every rank) */
+        if (!gs) {
+            long off = 0;
+            for (int r = 0; r < c->rank; r++) off += (long)hd[3 * r + 1];
+            for (long e = 0; e < nloc; e++) {
+                tr[3 * (off + e)] = (double)Ti[e];
+                tr[3 * (off + e) + 1] = (double)Tj[e];
+                tr[3 * (off + e) + 2] = Tv[e];
+            }
+            for (int r = 0; r < c->size; r++) cnt[r] = 3 * (long)hd[3 * r + 1];
+            gs = ffc__mpi_allgather(c->comm, tr, cnt);
+            for (long e = 0; e < total && !gs; e++) {
+                Ti[e] = (long)tr[3 * e];
+                Tj[e] = (long)tr[3 * e + 1];
+                Tv[e] = tr[3 * e + 2];
+            }
+        }
+        free(tr);
+    }
+    /* the link statistics: counts and forces summed, maxima (the node
+     * statistics are every rank's alike) */
+    if (!gs || g == FFC_ERR_CAPACITY) {
+        double *sb = malloc(10 * (size_t)c->size * sizeof *sb);
+        if (!ffc__mpi_min(c->comm, sb != NULL)) gs = FFC_ERR_MEMORY;
+        else {
+            double *q = sb + 10 * c->rank;
+            q[0] = (double)p->st.linked; q[1] = (double)p->st.active;
+            for (int i = 0; i < 3; i++) { q[2 + i] = p->st.force[i]; q[5 + i] = p->st.force_t[i]; }
+            q[8] = p->st.max_pen; q[9] = p->st.max_tn;
+            for (int r = 0; r < c->size; r++) cnt[r] = 10;
+            gs = ffc__mpi_allgather(c->comm, sb, cnt);
+            if (!gs) {
+                ffc_stats *t = &p->st;
+                t->linked = t->active = 0;
+                t->max_pen = t->max_tn = 0.0;
+                for (int i = 0; i < 3; i++) t->force[i] = t->force_t[i] = 0.0;
+                for (int r = 0; r < c->size; r++) {
+                    const double *a = sb + 10 * r;
+                    t->linked += (long)a[0];
+                    t->active += (long)a[1];
+                    for (int i = 0; i < 3; i++) { t->force[i] += a[2 + i]; t->force_t[i] += a[5 + i]; }
+                    t->max_pen = fmax(t->max_pen, a[8]);
+                    t->max_tn = fmax(t->max_tn, a[9]);
+                }
+            }
+        }
+        free(sb);
+    }
+    free(all);
+    free(cnt);
+    free(hd);
+    free(sel);
+    free(nodes);
+    free(Rp);
+    return g ? g : gs;
+}
+
+static int scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], long cap, long Ti[], long Tj[],
+                          double Tv[], long *ntrip, long *bad, const share_ctx *share, int *shared);
+
 int ffc_scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], long cap, long Ti[], long Tj[],
                        double Tv[], long *ntrip, long *bad)
+{
+    return scene_assemble(s, u, tangent, R, cap, Ti, Tj, Tv, ntrip, bad, NULL, NULL);
+}
+
+/* ffc_scene_assemble; with share (not NULL), the augmented Lagrangian's
+ * nodal pairs without segments share out their links over its ranks
+ * where the tangent is none or ranked (the others evaluate whole on every
+ * rank) */
+static int scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], long cap, long Ti[], long Tj[],
+                          double Tv[], long *ntrip, long *bad, const share_ctx *share, int *shared)
 {
     long dummy;
     if (!bad) bad = &dummy;
@@ -644,7 +857,14 @@ int ffc_scene_assemble(ffc_scene *s, const double u[], int tangent, double R[], 
         const long room = over ? 0 : cap - nt;
         long n = 0;
         ffc_stats old = p->st;
-        int st = ffc_assemble(&c.fx, &c.v, pair_qdeg(p), p->nl, p->links, p->lam, p->lam_t, &c.law, R, room,
+        const int pair_is_shared = share && p->o.method == FFC_METHOD_AL && p->o.nodal && !c.law.dual && c.law.nedge == 0 &&
+                           (tangent == FFC_TANGENT_NONE || tangent == FFC_TANGENT_RANKED);
+        if (shared && pair_is_shared) *shared = 1;
+        int st = pair_is_shared ? pair_shared(s, p, share, c.law, &c.fx, &c.v, R, tangent == FFC_TANGENT_NONE ? 0 : room,
+                                      tangent == FFC_TANGENT_NONE ? NULL : Ti + (over ? 0 : nt),
+                                      tangent == FFC_TANGENT_NONE ? NULL : Tj + (over ? 0 : nt),
+                                      tangent == FFC_TANGENT_NONE ? NULL : Tv + (over ? 0 : nt), &n, bad)
+                        : ffc_assemble(&c.fx, &c.v, pair_qdeg(p), p->nl, p->links, p->lam, p->lam_t, &c.law, R, room,
                               tangent == FFC_TANGENT_NONE ? NULL : Ti + (over ? 0 : nt),
                               tangent == FFC_TANGENT_NONE ? NULL : Tj + (over ? 0 : nt),
                               tangent == FFC_TANGENT_NONE ? NULL : Tv + (over ? 0 : nt), &n, &p->st, bad);
@@ -1267,15 +1487,19 @@ typedef struct {
     ffc_scene *s;
     const double *u0;  /* [n] the displacement Newton starts from */
     const double *v0;  /* [n] the velocities there, or NULL (quasi-static) */
+    const share_ctx *share; /* the ranks sharing out the links, or NULL */
+    int shared;        /* evaluations that shared out some pair's links */
 } newton_ctx;
 
 static int newton_contact(void *ctx, const double u[], int tangent, double R[], long cap, long Ti[], long Tj[],
                           double Tv[], long *nt, double *fmag, long *bad)
 {
-    const newton_ctx *c = ctx;
+    newton_ctx *c = ctx;
     if (c->v0)
         for (long i = 0; i < 3 * c->s->nv; i++) c->s->v[i] = c->v0[i] + c->s->dvdu * (u[i] - c->u0[i]);
-    const int st = ffc_scene_assemble(c->s, u, tangent, R, cap, Ti, Tj, Tv, nt, bad);
+    int any = 0;
+    const int st = scene_assemble(c->s, u, tangent, R, cap, Ti, Tj, Tv, nt, bad, c->share, &any);
+    c->shared += any && st != FFC_ERR_CAPACITY;   /* (a retry with more room is the same evaluation) */
     const char *name[3] = {"Fx", "Fy", "Fz"};
     *fmag = 0.0;
     for (int i = 0; i < 3; i++) {
@@ -1346,8 +1570,13 @@ int ffc_scene_newton(ffc_scene *s, const double r[], double u[], const ffc_newto
             memcpy(u0, u, (size_t)n * sizeof(double));
             memcpy(v0, s->v, (size_t)n * sizeof(double));
         }
-        newton_ctx c = {s, u0, v0};
+        /* on several ranks (every rank holds the scene whole), each
+         * evaluates its share of the links */
+        share_ctx sh = {s->par.comm, 0, 1};
+        if (s->par.engine != FFC_ENGINE_CHOLMOD) ffc__mpi_ranks(s->par.comm, &sh.rank, &sh.size);
+        newton_ctx c = {s, u0, v0, sh.size > 1 && s->par.links ? &sh : NULL, 0};
         st = ffc__bulk_newton(s->bulk, nr, rows, nc, cand, newton_contact, &c, r, u, o, info, bad);
+        info->evals_shared = c.shared;
         if (v0) /* the velocities of the displacement returned */
             for (long i = 0; i < n; i++) s->v[i] = v0[i] + s->dvdu * (st < 0 ? 0.0 : u[i] - u0[i]);
     }

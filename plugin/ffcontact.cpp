@@ -776,9 +776,9 @@ void scene_error(const char *fn, int st, long bad, const char *what)
     fail(fn, s.str());
 }
 
-// ffcScene C(Th, effects = 0, order = 1, engine = "auto")
+// ffcScene C(Th, effects = 0, order = 1, engine = "auto", shareLinks = 1)
 basicAC_F0::name_and_type scene_names[] = {
-    {"effects", &typeid(long)}, {"order", &typeid(long)}, {"engine", &typeid(string *)}};
+    {"effects", &typeid(long)}, {"order", &typeid(long)}, {"engine", &typeid(string *)}, {"shareLinks", &typeid(long)}};
 
 FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh)
 {
@@ -794,6 +794,13 @@ FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh)
     const std::string engine = nm.str(2, "auto");
     if (engine != "auto" && engine != "replicated" && engine != "mumps")
         fail(fn, "argument 'engine': '" + engine + "' is not \"auto\", \"replicated\" or \"mumps\"");
+    const long share = nm.integer(3, 1);
+    if (share != 0 && share != 1) {
+        std::ostringstream s;
+        s << "argument 'shareLinks': " << share << " is not 1 (several ranks: each evaluates its share of the contact "
+          << "links) or 0 (every rank evaluates every link)";
+        fail(fn, s.str());
+    }
     std::unique_ptr<SceneData> d(new SceneData);
     mesh_arrays(Th, d->m);
     if (d->m.nbe == 0) fail(fn, "argument 'Th': the mesh has no boundary faces");
@@ -816,7 +823,7 @@ FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh)
     int rank, ranks, fcomm;
     ffc_mpi_world(&rank, &ranks, &fcomm);
     if (ranks > 1) {
-        const ffc_parallel par = {engine == "mumps" ? FFC_ENGINE_MUMPS : FFC_ENGINE_REPLICATED, fcomm, 0};
+        const ffc_parallel par = {engine == "mumps" ? FFC_ENGINE_MUMPS : FFC_ENGINE_REPLICATED, fcomm, 0, (int)share};
         st = ffc_scene_set_parallel(d->s, &par);
         if (st) scene_error(fn, st, -1, "the scene's parallel engine");
     }
@@ -1726,6 +1733,7 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "residual") return in.residual;
     if (k == "newtonIterations") return d.newton.iters;
     if (k == "evaluations") return d.newton.evals;
+    if (k == "evaluationsShared") return d.newton.evals_shared;
     if (k == "evalTime") return d.newton.t_eval;
     if (k == "fallbacks") return d.newton.fallbacks;
     if (k == "condensedDofs") return d.newton.m;
@@ -1737,7 +1745,7 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "columnsTime") return in.t_columns;
     if (k == "reused") return in.reused;
     if (k == "factorRanks") return in.factor_ranks;
-    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, reused, factorRanks");
+    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, evaluationsShared, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, reused, factorRanks");
     return 0;
 }
 
@@ -1769,7 +1777,7 @@ long parallelSolveOwn(Matrice_Creuse<double> *const &A, KN<double> *const &b, KN
     std::vector<double> bv(n), xv(n);
     for (long i = 0; i < n; i++) bv[i] = (*b)[i];
     if (own != 0 && own != 1) fail(fn, "argument 'own': " + std::to_string(own) + " is neither 0 nor 1");
-    const ffc_parallel par = {FFC_ENGINE_MUMPS, fcomm, (int)own};
+    const ffc_parallel par = {FFC_ENGINE_MUMPS, fcomm, (int)own, 0};
     long bad = -1;
     const int st = ffc_parallel_solve(&par, n, (long)Ti.size(), Ti.data(), Tj.data(), Tv.data(), bv.data(), xv.data(), &bad);
     if (st == FFC_ERR_SINGULAR) return 1;
@@ -1919,7 +1927,7 @@ void init_scene()
     zzzfff->Add("ffcScene", atype<FFScene *>());
     typedef FFScene *S;
     typedef KN<double> *V;
-    TheOperators->Add("<-", named<S, S, pmesh3>("ffcScene", scene_names, 3, sceneInit));
+    TheOperators->Add("<-", named<S, S, pmesh3>("ffcScene", scene_names, 4, sceneInit));
     Global.Add("ffcAddPair", "(", named<long, S, KN<long> *, KN<long> *>("ffcAddPair", pair_names, PO_N, addPair));
     Global.Add("ffcAddPair", "(", named<long, S, long, long>("ffcAddPair", pair_names, PO_N, addPairL));
     Global.Add("ffcAddPair", "(", named<long, S, long, KN<long> *>("ffcAddPair", pair_names, PO_N, addPairLA));

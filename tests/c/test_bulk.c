@@ -241,7 +241,7 @@ static void test_no_mpi(void **state)
     assert_int_equal(r, 0);
     assert_int_equal(n, 1);
     assert_int_equal(ffc_has_mpi(), 0);
-    const ffc_parallel mumps = {FFC_ENGINE_MUMPS, 0, 0}, chol = {FFC_ENGINE_CHOLMOD, 0, 0};
+    const ffc_parallel mumps = {FFC_ENGINE_MUMPS, 0, 0, 0}, chol = {FFC_ENGINE_CHOLMOD, 0, 0, 0};
     assert_int_equal(ffc_scene_set_parallel(s, &mumps), FFC_ERR_UNAVAILABLE);
     assert_non_null(strstr(ffc_strerror(FFC_ERR_UNAVAILABLE), "MUMPS"));
     assert_int_equal(ffc_scene_set_parallel(s, &chol), FFC_OK);

@@ -506,12 +506,173 @@ static void test_assembled_tangent(void **state)
             ascene_make(a, nodal > 0, &s);
             ffc_effects fx = {1, 0, finite};
             /* all stick (a huge mu), all slip (eps_T |r| >> mu t_N) */
-            ffc_law stick = {60, nodal > 0, 0, 1e6, 5.0, 0.0, 0.0, NULL, NULL, 0, NULL, nodal == 2};
+            ffc_law stick = {60, nodal > 0, 0, 1e6, 5.0, 0.0, 0.0, NULL, NULL, 0, NULL, nodal == 2, NULL, NULL, NULL};
             assembled_check(a, &fx, &stick, FFC_FRIC_STICK);
-            ffc_law slip = {60, nodal > 0, 0, 0.3, 2000.0, 0.0, 0.0, NULL, NULL, 0, NULL, nodal == 2};
+            ffc_law slip = {60, nodal > 0, 0, 0.3, 2000.0, 0.0, 0.0, NULL, NULL, 0, NULL, nodal == 2, NULL, NULL, NULL};
             assembled_check(a, &fx, &slip, FFC_FRIC_SLIP);
             free(a);
         }
+}
+
+/* Shares of the links (ffc_law.lsel, nsum): the pair's links split by
+ * slave facet into 2 and 3 shares (one of the 3 with no facet at all), the
+ * node sums completed by nsum (simulated: a first pass records each
+ * share's partial sums, the second hands every share their sum in share
+ * order).  The shares' residuals, ranked terms (U and V columns, as
+ * triplets) and link statistics add up to the whole assembly's (to
+ * round-off of the other summation order, 1e-13), their node statistics
+ * equal it; frictionless, all stick and all slip. */
+typedef struct {
+    int rec;              /* 1: record the share's sums and stop; 0: hand over the total */
+    int share, nshare;
+    double *part[3];      /* [8 nn] each share's partial sums */
+    long n;
+    int calls, st_seen;
+} shares_ctx;
+
+enum { SHARES_STOP = -900 };
+
+static int shares_nsum(void *ctx, int st, long n, double buf[])
+{
+    shares_ctx *c = ctx;
+    c->calls++;
+    c->st_seen = st;
+    if (st) return st;
+    if (c->rec) {
+        c->n = n;
+        c->part[c->share] = malloc((size_t)(n > 0 ? n : 1) * sizeof(double));
+        memcpy(c->part[c->share], buf, (size_t)n * sizeof(double));
+        return SHARES_STOP;
+    }
+    assert_int_equal(n, c->n);
+    for (long i = 0; i < n; i++) {
+        double t = 0.0;
+        for (int r = 0; r < c->nshare; r++) t += c->part[r][i];
+        buf[i] = t;
+    }
+    return FFC_OK;
+}
+
+/* the ranked terms as dense columns D[row][col] (col < 2 nterm) */
+static void shares_dense(const long *Ti, const long *Tj, const double *Tv, long nt, double *D, long ncol)
+{
+    for (long k = 0; k < nt; k++) {
+        assert_true(Tj[k] >= 0 && Tj[k] < ncol);
+        D[Ti[k] * ncol + Tj[k]] += Tv[k];
+    }
+}
+
+static void test_assembled_shares(void **state)
+{
+    (void)state;
+    uint64_t s = 37;
+    enum { NCOL = 2 * 4 * NV };   /* at most 4 terms a node (normal, 3 friction) */
+    for (int regime = 0; regime <= 2; regime++) {     /* frictionless, stick, slip */
+        ascene *a = malloc(sizeof *a);
+        ascene_make(a, 1, &s);
+        ffc_effects fx = {regime > 0, 0, 0};
+        ffc_law law = {60, 1, 2, regime == 1 ? 1e6 : 0.3, regime == 1 ? 5.0 : 2000.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0,
+                       NULL, NULL, NULL};
+        long *Ti = malloc(CAP * sizeof *Ti), *Tj = malloc(CAP * sizeof *Tj), nt, bad;
+        double *Tv = malloc(CAP * sizeof *Tv);
+        double *Dw = calloc((size_t)NV * 3 * NCOL, sizeof *Dw), *Ds = calloc((size_t)NV * 3 * NCOL, sizeof *Ds);
+        double Rw[NV * 3] = {0};
+        ffc_stats sw;
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &law, Rw, CAP, Ti, Tj, Tv, &nt, &sw,
+                                      &bad), FFC_OK);
+        assert_true(sw.active > 0);
+        if (regime) assert_true((regime == 1 ? sw.stick : sw.slip) > 0);
+        shares_dense(Ti, Tj, Tv, nt, Dw, NCOL);
+        for (int nshare = 2; nshare <= 3; nshare++) {
+            unsigned char sel[3][NL];
+            for (int r = 0; r < nshare; r++)
+                for (int k = 0; k < NL; k++) {
+                    const long f = a->L[k].sf;
+                    /* 3 shares: the first half, none, the second half */
+                    const int owner = nshare == 2 ? f * 2 / NFS : (f < NFS / 2 ? 0 : 2);
+                    sel[r][k] = owner == r;
+                }
+            shares_ctx c = {1, 0, nshare, {NULL, NULL, NULL}, 0, 0, 0};
+            ffc_law ls = law;
+            ls.nsum = shares_nsum;
+            ls.nsum_ctx = &c;
+            for (int r = 0; r < nshare; r++) {   /* pass 1: each share's partial sums */
+                double R[NV * 3] = {0};
+                c.share = r;
+                ls.lsel = sel[r];
+                assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &ls, R, CAP, Ti, Tj, Tv, &nt,
+                                              NULL, &bad), SHARES_STOP);
+            }
+            c.rec = 0;
+            double Rs[NV * 3] = {0};
+            memset(Ds, 0, (size_t)NV * 3 * NCOL * sizeof *Ds);
+            long linked = 0, active = 0;
+            double force[3] = {0, 0, 0}, force_t[3] = {0, 0, 0}, max_pen = 0, max_tn = 0;
+            for (int r = 0; r < nshare; r++) {   /* pass 2: the shares with the total sums */
+                double R[NV * 3] = {0};
+                ffc_stats st;
+                c.share = r;
+                c.calls = 0;
+                ls.lsel = sel[r];
+                assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &ls, R, CAP, Ti, Tj, Tv, &nt,
+                                              &st, &bad), FFC_OK);
+                assert_int_equal(c.calls, 1);
+                if (nshare == 3 && r == 1) {      /* no facet: nothing */
+                    assert_int_equal(st.linked, 0);
+                    for (int i = 0; i < NV * 3; i++) assert_true(R[i] == 0.0);
+                    for (long k = 0; k < nt; k++) assert_true(Tv[k] == 0.0);
+                }
+                for (int i = 0; i < NV * 3; i++) Rs[i] += R[i];
+                shares_dense(Ti, Tj, Tv, nt, Ds, NCOL);
+                linked += st.linked;
+                active += st.active;
+                for (int i = 0; i < 3; i++) { force[i] += st.force[i]; force_t[i] += st.force_t[i]; }
+                max_pen = fmax(max_pen, st.max_pen);
+                max_tn = fmax(max_tn, st.max_tn);
+                /* the node statistics: every share's are the whole's */
+                assert_int_equal(st.stick, sw.stick);
+                assert_int_equal(st.slip, sw.slip);
+                assert_true(st.max_pen_node == sw.max_pen_node);
+                assert_close(st.dissipation, sw.dissipation, 1e-13 * (fabs(sw.dissipation) + 1e-300));
+            }
+            double rs = 0, ds = 0, fs = 0;
+            for (int i = 0; i < NV * 3; i++) rs = fmax(rs, fabs(Rw[i]));
+            for (long i = 0; i < (long)NV * 3 * NCOL; i++) ds = fmax(ds, fabs(Dw[i]));
+            for (int i = 0; i < NV * 3; i++) assert_close(Rs[i], Rw[i], 1e-13 * rs);
+            for (long i = 0; i < (long)NV * 3 * NCOL; i++) assert_close(Ds[i], Dw[i], 1e-13 * ds);
+            assert_int_equal(linked, sw.linked);
+            assert_int_equal(active, sw.active);
+            for (int i = 0; i < 3; i++) {
+                fs = fmax(fs, fabs(sw.force[i]) + fabs(sw.force_t[i]));
+            }
+            for (int i = 0; i < 3; i++) {
+                assert_close(force[i], sw.force[i], 1e-13 * fs);
+                assert_close(force_t[i], sw.force_t[i], 1e-13 * fs);
+            }
+            assert_true(max_pen == sw.max_pen);
+            assert_true(max_tn == sw.max_tn);
+            for (int r = 0; r < nshare; r++) free(c.part[r]);
+        }
+        /* refused: pointwise multipliers, no nsum, a consistent tangent */
+        unsigned char all[NL];
+        memset(all, 1, sizeof all);
+        shares_ctx c = {0, 0, 1, {NULL, NULL, NULL}, 0, 0, 0};
+        ffc_law ls = law;
+        ls.lsel = all;
+        double R[NV * 3];
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &ls, R, CAP, Ti, Tj, Tv, &nt, NULL, &bad),
+                         FFC_ERR_NULL);
+        ls.nsum = shares_nsum;
+        ls.nsum_ctx = &c;
+        ls.material_only = 0;
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &ls, R, CAP, Ti, Tj, Tv, &nt, NULL, &bad),
+                         FFC_ERR_VALUE);
+        ls.nodal = 0;
+        assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &ls, R, CAP, Ti, Tj, Tv, &nt, NULL, &bad),
+                         FFC_ERR_VALUE);
+        assert_int_equal(c.calls, 0);
+        free(Ti); free(Tj); free(Tv); free(Dw); free(Ds); free(a);
+    }
 }
 
 /* Nodal friction with prescribed directions (ffc_law.fixed): every slave
@@ -531,9 +692,9 @@ static void test_assembled_fixed_direction(void **state)
         ascene *a = malloc(sizeof *a);
         ascene_make(a, 1, &s);
         ffc_effects fx = {1, 0, finite};
-        ffc_law stick = {60, 1, 0, 1e6, 5.0, 0.0, 0.0, fixed, NULL, 0, NULL, 0};
+        ffc_law stick = {60, 1, 0, 1e6, 5.0, 0.0, 0.0, fixed, NULL, 0, NULL, 0, NULL, NULL, NULL};
         assembled_check(a, &fx, &stick, FFC_FRIC_STICK);
-        ffc_law slip = {60, 1, 0, 0.3, 2e5, 0.0, 0.0, fixed, NULL, 0, NULL, 0};   // (the y slip alone must exceed the cone)
+        ffc_law slip = {60, 1, 0, 0.3, 2e5, 0.0, 0.0, fixed, NULL, 0, NULL, 0, NULL, NULL, NULL};   // (the y slip alone must exceed the cone)
         assembled_check(a, &fx, &slip, FFC_FRIC_SLIP);
         /* the update: no x traction at any slave node; the residual differs
          * from the undropped law's (the x friction is gone) */
@@ -583,10 +744,10 @@ static void test_assembled_velocity_form(void **state)
         ascene *a = malloc(sizeof *a);
         ascene_make(a, nodal, &s);
         ffc_effects fx = {1, 1, 0};
-        ffc_law stick = {60, nodal, 0, 1e6, 5.0 * dt, dt, 50.0, NULL, NULL, 0, NULL, 0};
+        ffc_law stick = {60, nodal, 0, 1e6, 5.0 * dt, dt, 50.0, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
         assembled_check_motion(a, &fx, &stick, FFC_FRIC_STICK, 0);
         assembled_check_motion(a, &fx, &stick, FFC_FRIC_STICK, 1);
-        ffc_law slip = {60, nodal, 0, 0.3, 2000.0 * dt, dt, 50.0, NULL, NULL, 0, NULL, 0};
+        ffc_law slip = {60, nodal, 0, 0.3, 2000.0 * dt, dt, 50.0, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
         assembled_check_motion(a, &fx, &slip, FFC_FRIC_SLIP, 0);
         assembled_check_motion(a, &fx, &slip, FFC_FRIC_SLIP, 1);
         /* agreement with the incremental form (ascene_make: v = (u - u^n) / 0.01) */
@@ -629,7 +790,7 @@ static void test_augment(void **state)
         ascene *a = malloc(sizeof *a);
         ascene_make(a, nodal, &s);
         ffc_effects fx = {1, 0, 0};
-        ffc_law law = {60, nodal, 0, 0.3, 30.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0};
+        ffc_law law = {60, nodal, 0, 0.3, 30.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
         double P[NL * FFC_POINT_COLS], lt0[NL * 3];
         long bad;
         assert_int_equal(ffc_points(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &law, P, &bad), FFC_OK);
@@ -698,6 +859,7 @@ int main(void)
         cmocka_unit_test(test_link_velocity_form),
         cmocka_unit_test(test_velocity_matches_incremental),
         cmocka_unit_test(test_assembled_tangent),
+        cmocka_unit_test(test_assembled_shares),
         cmocka_unit_test(test_assembled_fixed_direction),
         cmocka_unit_test(test_assembled_velocity_form),
         cmocka_unit_test(test_augment),

@@ -203,7 +203,7 @@ static void test_assemble_augment(void **state)
     long Ti[2000], Tj[2000], nt, bad;
     double Tv[2000];
     ffc_stats st;
-    ffc_law law = {100, 0, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0};
+    ffc_law law = {100, 0, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
     /* too small a buffer: the count needed is returned */
     assert_int_equal(ffc_assemble(&fx, &P, 2, 6, L, lam, NULL, &law, R, 10, Ti, Tj, Tv, &nt, &st, &bad), FFC_ERR_CAPACITY);
     assert_int_equal(nt, 6 * 18 * 18);
@@ -237,7 +237,7 @@ static void test_assemble_augment(void **state)
     /* nodal multipliers: the weighted gap of every slave node is -0.01, so
      * one augmentation gives lambda = 1 at the 4 slave nodes (and 0 at the
      * master nodes); the pressure is then 1 + 100 * 0.01 = 2 everywhere */
-    ffc_law nod = {100, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0};
+    ffc_law nod = {100, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
     double lamv[8] = {0};
     assert_int_equal(ffc_augment(&fx, &P, 2, 6, L, lamv, NULL, &nod, &st, &bad), FFC_OK);
     for (int v = 0; v < 8; v++) assert_close(lamv[v], v >= 4 ? 1.0 : 0.0, 1e-12);
@@ -280,7 +280,7 @@ static void test_nodal_tangent(void **state)
     ffc_tree_free(t);
     double lam[NV] = {0};
     for (int v = 25; v < NV; v++) lam[v] = v % 3 ? test_rand(&s, 0.0, 0.5) : 0.0;
-    ffc_law law = {60, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0};
+    ffc_law law = {60, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
     ffc_pair P = {3, NFS, Fs, 3, NFM, Fm, NV, X, u, NULL, NULL};
     enum { CAP = 200000 };
     long *Ti = malloc(CAP * sizeof *Ti), *Tj = malloc(CAP * sizeof *Tj), nt, bad;

@@ -349,7 +349,7 @@ static void test_uniform_pressure(void **state)
     ffc_pair P = {3, 2 * NS * NS, Fs, 3, 2 * NM * NM, Fm, NV, X, u, NULL, NULL};
     ffc_effects fx = {0, 0, 0};
     for (int d = 0; d <= 1; d++) {
-        ffc_law law = {1e3, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, d ? dual : NULL, 0, NULL, 0};
+        ffc_law law = {1e3, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, d ? dual : NULL, 0, NULL, 0, NULL, NULL, NULL};
         long nt, bad;
         memset(R, 0, sizeof R);
         assert_int_equal(ffc_assemble(&fx, &P, 0, nl, L, lam, NULL, &law, R, 0, NULL, NULL, NULL, &nt, NULL, &bad),
@@ -360,7 +360,7 @@ static void test_uniform_pressure(void **state)
     enum { NQ = 3, NLQ = 2 * NS * NS * NQ };
     static ffc_link Lq[NLQ];
     assert_int_equal(ffc_search(t, 3, 2 * NS * NS, Fs, NV, X, 2, NULL, NLQ, Lq), NLQ);
-    ffc_law law = {1e3, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0};
+    ffc_law law = {1e3, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
     long nt, bad;
     memset(R, 0, sizeof R);
     assert_int_equal(ffc_assemble(&fx, &P, 2, NLQ, Lq, lam, NULL, &law, R, 0, NULL, NULL, NULL, &nt, NULL, &bad), FFC_OK);
@@ -474,18 +474,18 @@ static void test_segment_tangent(void **state)
         for (int d = 0; d <= 1; d++) {
             const double *dual = d ? a->dual : NULL;
             ffc_effects fr = {0, 0, finite}, fc = {1, 0, finite};
-            ffc_law normal = {60, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, dual, 0, NULL, 0};
+            ffc_law normal = {60, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, dual, 0, NULL, 0, NULL, NULL, NULL};
             check_tangent(a, &fr, &normal, FFC_FRIC_STICK);
-            ffc_law stick = {60, 1, 0, 1e6, 5.0, 0.0, 0.0, NULL, dual, 0, NULL, 0};
+            ffc_law stick = {60, 1, 0, 1e6, 5.0, 0.0, 0.0, NULL, dual, 0, NULL, 0, NULL, NULL, NULL};
             check_tangent(a, &fc, &stick, FFC_FRIC_STICK);
-            ffc_law slip = {60, 1, 0, 0.3, 2000.0, 0.0, 0.0, NULL, dual, 0, NULL, 0};
+            ffc_law slip = {60, 1, 0, 0.3, 2000.0, 0.0, 0.0, NULL, dual, 0, NULL, 0, NULL, NULL, NULL};
             check_tangent(a, &fc, &slip, FFC_FRIC_SLIP);
         }
     /* separated: the slave lifted off, no multipliers: nothing, exactly */
     for (int v = 25; v < TNV; v++) a->u[3 * v + 2] += 0.05;
     for (int k = 0; k < TNV; k++) a->lam[k] = 0.0;
     ffc_effects fc = {1, 0, 0};
-    ffc_law stick = {60, 1, 0, 1e6, 5.0, 0.0, 0.0, NULL, a->dual, 0, NULL, 0};
+    ffc_law stick = {60, 1, 0, 1e6, 5.0, 0.0, 0.0, NULL, a->dual, 0, NULL, 0, NULL, NULL, NULL};
     check_tangent(a, &fc, &stick, FFC_FRIC_OPEN);
     free(a);
 }
@@ -619,11 +619,11 @@ static void test_resegmented_tangent(void **state)
     a->np = np;
     for (int finite = 0; finite <= 1; finite++) {
         ffc_effects fr = {0, 0, finite}, fc = {1, 0, finite};
-        ffc_law normal = {1e3, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0};
+        ffc_law normal = {1e3, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
         rs_check(a, &fr, normal, FFC_FRIC_STICK);
-        ffc_law stick = {1e3, 1, 0, 1e6, 50.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0};
+        ffc_law stick = {1e3, 1, 0, 1e6, 50.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
         rs_check(a, &fc, stick, FFC_FRIC_STICK);
-        ffc_law slip = {1e3, 1, 0, 0.3, 2e4, 0.0, 0.0, NULL, NULL, 0, NULL, 0};
+        ffc_law slip = {1e3, 1, 0, 0.3, 2e4, 0.0, 0.0, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
         rs_check(a, &fc, slip, FFC_FRIC_SLIP);
     }
     free(a);
@@ -642,7 +642,7 @@ static void test_translation(void **state)
     long *Ti = malloc(TCAP * sizeof *Ti), *Tj = malloc(TCAP * sizeof *Tj), nt, bad;
     double *Tv = malloc(TCAP * sizeof *Tv), R[TNV * 3] = {0};
     ffc_effects fx = {0, 0, 0};
-    ffc_law law = {60, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, a->dual, 0, NULL, 0};
+    ffc_law law = {60, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, a->dual, 0, NULL, 0, NULL, NULL, NULL};
     assert_int_equal(ffc_assemble(&fx, &a->P, 0, a->nl, a->L, a->lam, NULL, &law, R, TCAP, Ti, Tj, Tv, &nt, NULL, &bad),
                      FFC_OK);
     memset(K, 0, sizeof K);
@@ -686,13 +686,13 @@ static void test_search_bad_input(void **state)
     assert_int_equal(ffc_mortar_search(t, TNFS, bad_f, TNV, a->X, 2, NULL, 4000, a->L, &need), FFC_ERR_INDEX);
     /* segment links need the nodal law and the qdeg 0 convention */
     ffc_effects fx = {0, 0, 0};
-    ffc_law pointwise = {60, 0, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0};
+    ffc_law pointwise = {60, 0, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
     double R[TNV * 3] = {0};
     long nt, bad;
     const int nl = ffc_mortar_search(t, TNFS, a->Fs, TNV, a->X, 2, NULL, 4000, a->L, &need);
     assert_int_equal(ffc_assemble(&fx, &a->P, 0, nl, a->L, a->lam, NULL, &pointwise, R, 0, NULL, NULL, NULL, &nt, NULL,
                                   &bad), FFC_ERR_VALUE);
-    ffc_law law = {60, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0};
+    ffc_law law = {60, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
     assert_int_equal(ffc_assemble(&fx, &a->P, 2, nl, a->L, a->lam, NULL, &law, R, 0, NULL, NULL, NULL, &nt, NULL, &bad),
                      FFC_ERR_SIZE);
     a->L[3].w = NAN;

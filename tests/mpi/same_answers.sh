@@ -42,8 +42,16 @@ check() {   # check <name> <case> "<fields>" <options...>
             || { echo "FAIL $name: $f = $a (1 process), $b ($np ranks)"; fail=1; }
     done
 }
+# the contact evaluations of the condensed Newton shared out over the
+# ranks (augmented Lagrangian, nodal multipliers): each rank its share of
+# the links, counted in the JSON
+shared() {   # shared <name>: some evaluations shared, on N ranks
+    e=$(val "$dir/$1-$np.json" condensed_evaluations_shared)
+    [ -n "$e" ] && [ "$e" -gt 0 ] || { echo "FAIL $1: no contact evaluation shared out over $np ranks ($e)"; fail=1; }
+}
 H="F F_contact a a_fit p_max p0_fit max_penetration"
 check hertz-al hertz "$H" -hc 0.1 -vtk 0
+shared hertz-al
 # (node-to-surface: no penetration to compare, it is zero to round-off;
 # the fitted a and p0 take the nodes of positive pressure, and the last
 # node at the rim carries 1e-12 or 0 by round-off)
@@ -54,6 +62,7 @@ check hertz-mortar-p2 hertz "$H" -hc 0.1 -vtk 0 -method mortar -DQUADRATIC=1
 # (a support of 384 contact dofs: the condensed Newton's dense LU shared
 # over the ranks, ScaLAPACK)
 check hertz-025 hertz "$H" -hc 0.025 -vtk 0
+shared hertz-025
 # the stiffness by FreeFEM's varf, each rank its part, summed (ffcRankSum)
 check hertz-varf hertz "$H" -hc 0.1 -vtk 0 -assembly varf
 # the bulk factorized by parallel MUMPS instead of CHOLMOD on every rank
@@ -77,6 +86,7 @@ sh scripts/ff -np "$np" scripts/hertz.edp -hc 0.1 -vtk 0 -out results/mpi-answer
 rm -rf results/mpi-answers
 if [ "$mode" = full ]; then
     check sliding-block sliding-block "N T_plateau T_reverse work work_steady"
+    shared sliding-block
     check cattaneo cattaneo-mindlin "P level0_c level1_c level2_c level0_c_area level1_c_area level2_c_area level2_q_ratio_reached"
 fi
 [ "$fail" -eq 0 ] && echo "same answers on 1 and $np ranks ($mode)"

@@ -31,7 +31,7 @@ static ffc_scene *scene(ffc_engine eng)
     assert_int_equal(ffc_scene_create(3, NV, X, 0, NULL, &fx, &s), FFC_OK);
     int fc;
     ffc_mpi_world(NULL, NULL, &fc);
-    const ffc_parallel p = {eng, fc, 0};
+    const ffc_parallel p = {eng, fc, 0, 0};
     assert_int_equal(ffc_scene_set_parallel(s, &p), FFC_OK);
     return s;
 }
@@ -168,7 +168,7 @@ static void test_general_solve(void **state)
     }
     test_dense_solve(NG, A, bb, xr);   /* the reference */
     long bad = -1;
-    const ffc_parallel shared = {FFC_ENGINE_MUMPS, fc, 0}, own = {FFC_ENGINE_MUMPS, fc, 1};
+    const ffc_parallel shared = {FFC_ENGINE_MUMPS, fc, 0, 0}, own = {FFC_ENGINE_MUMPS, fc, 1, 0};
     assert_int_equal(ffc_parallel_solve(&shared, NG, nt, gi, gj, gv, bb, xs, &bad), FFC_OK);
     /* own: the ranks split the entries (rank r the r-th share of the list) */
     const long lo = nt * rank / ranks, hi = nt * (rank + 1) / ranks;
@@ -185,7 +185,7 @@ static void test_general_solve(void **state)
     gi[3] = NG;
     assert_int_equal(ffc_parallel_solve(&shared, NG, nt, gi, gj, gv, bb, xs, &bad), FFC_ERR_INDEX);
     assert_int_equal(bad, 3);
-    const ffc_parallel chol = {FFC_ENGINE_CHOLMOD, 0, 0};
+    const ffc_parallel chol = {FFC_ENGINE_CHOLMOD, 0, 0, 0};
     assert_int_equal(ffc_parallel_solve(&chol, NG, nt, gi, gj, gv, bb, xs, &bad), FFC_ERR_UNAVAILABLE);
 }
 
@@ -294,7 +294,7 @@ static void test_pivoting_workspace(void **state)
         assert_true(e == -8 || e == -9 || e == -11 || e == -14 || e == -15 || e == -17 || e == -20);
     }
     long bad = -1;
-    const ffc_parallel shared = {FFC_ENGINE_MUMPS, fc, 0};
+    const ffc_parallel shared = {FFC_ENGINE_MUMPS, fc, 0, 0};
     assert_int_equal(ffc_parallel_solve(&shared, NP, nt, pi, pj, pv, bb, x, &bad), FFC_OK);
     static double r[NP], scale[NP];
     for (int i = 0; i < NP; i++) { r[i] = -bb[i]; scale[i] = fabs(bb[i]); }
@@ -442,7 +442,7 @@ static void test_bad_engine(void **state)
 {
     (void)state;
     ffc_scene *s = scene(FFC_ENGINE_CHOLMOD);
-    const ffc_parallel p = {(ffc_engine)7, 0, 0};
+    const ffc_parallel p = {(ffc_engine)7, 0, 0, 0};
     assert_int_equal(ffc_scene_set_parallel(s, &p), FFC_ERR_VALUE);
     assert_int_equal(ffc_scene_set_parallel(s, NULL), FFC_ERR_NULL);
     assert_int_equal(ffc_has_mpi(), 1);
