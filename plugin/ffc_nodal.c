@@ -115,8 +115,6 @@ static void multiplier_shape(const ffc_law *law, int ns, long f, const double xs
     }
 }
 
-/* pass 1: geometry of every linked point, nodal sums and pressures; with
- * friction (lam_t != NULL) the slips and the nodal return maps */
 /* A share of the links (law->lsel): its partial node sums G_a, W_a and the
  * weighted slip's and normal's sums, 8 per node of the linked links' slave
  * facets in ascending node order, completed by law->nsum into every share's; called
@@ -167,6 +165,8 @@ static int share_sums(const ffc_pair *P, long nl, const ffc_link links[], const 
     return st;
 }
 
+/* pass 1: geometry of every linked point, nodal sums and pressures; with
+ * friction (lam_t != NULL) the slips and the nodal return maps */
 int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw[], int nq, long nl,
                        const ffc_link links[], const double lambda[], const double lam_t[], const ffc_law *law,
                        nodal_t *w, ffc_stats *stats, long *bad)

@@ -747,8 +747,8 @@ static int pair_shared(const ffc_scene *s, scene_pair *p, const share_ctx *c, ff
     /* the residual at the pair's dofs */
     const long nn = g ? 0 : pair_nodes(s, p, sel + (p->nl > 0 ? p->nl : 1), nodes), m = 3 * nn;
     double *all = g ? NULL : malloc((size_t)(c->size * m > 0 ? c->size * m : 1) * sizeof *all);
-    int gs = g == FFC_ERR_CAPACITY ? FFC_OK : g;   /* (capacity: the sums still gathered below, alike) */
-    if (!gs && g != FFC_ERR_CAPACITY) {
+    int gs = FFC_OK;   /* (the gathers' status; with capacity short, the statistics are still gathered) */
+    if (!g) {
         if (!all) gs = FFC_ERR_MEMORY;
         for (long i = 0; i < nn && all; i++)
             for (int k = 0; k < 3; k++) all[c->rank * m + 3 * i + k] = Rp[3 * nodes[i] + k];
@@ -782,7 +782,7 @@ static int pair_shared(const ffc_scene *s, scene_pair *p, const share_ctx *c, ff
     }
     /* the link statistics: counts and forces summed, maxima (the node
      * statistics are every rank's alike) */
-    if (!gs || g == FFC_ERR_CAPACITY) {
+    if (!gs && (!g || g == FFC_ERR_CAPACITY)) {
         double *sb = malloc(10 * (size_t)c->size * sizeof *sb);
         if (!ffc__mpi_min(c->comm, sb != NULL)) gs = FFC_ERR_MEMORY;
         else {
