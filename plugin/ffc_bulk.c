@@ -1823,22 +1823,6 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
          * of the dense solve; the ranked direction made it) */
         if (tmode != FFC_TANGENT_RANKED) st = shared_gemv(b, m, m, 1.0, b->G, b->ld, dz, 0.0, gdz);
         if (st) break;
-        double g0 = dot(m, rho, gdz);
-        if (!(g0 < 0) && tmode == FFC_TANGENT_CONSISTENT) {
-            /* the consistent tangent is indefinite here: the material one's direction */
-            st = contact_eval(b, fn, ctx, w, FFC_TANGENT_MATERIAL, &nt, &fm, bad);
-            info->evals++;
-            if (!st) st = direction(b, nt, rho, dy, dz, ap, ad, q, tt, ss, &na, bad);
-            if (st) break;
-            if (na > info->support) info->support = na;
-            info->fallbacks++;
-            st = shared_gemv(b, m, m, 1.0, b->G, b->ld, dz, 0.0, gdz);
-            if (st) break;
-            g0 = dot(m, rho, gdz);
-        }
-        if (!(g0 < 0)) { status = FFC_INFO_NODESCENT; break; }
-        st = shared_gemv(b, nrb, m, 1.0, b->H, nrb, dz, 0.0, hdz);
-        if (st) break;
         /* rho at z + a dz into rt; its g = rt . gdz; a force that reaches
          * a dof outside C: it joins C and the iteration restarts */
 #define TRIAL(a_)                                                                                                  \
@@ -1854,10 +1838,51 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
             for (long k = 0; k < m; k++) rt[k] = z[k] + (a_) * dz[k] + Fp[k];                                      \
         }                                                                                                          \
     } while (0)
+        double g0 = dot(m, rho, gdz);
+        int whole = 0; /* the full step, taken on |rho| alone */
+        if (!(g0 < 0) && tmode == FFC_TANGENT_CONSISTENT) {
+            /* g(0) >= 0 for the consistent tangent: first its full step,
+             * taken where it at least halves |rho| (with friction the
+             * tangent is not symmetric and g need not fall along a good
+             * Newton step: see the line search below) */
+            st = shared_gemv(b, nrb, m, 1.0, b->H, nrb, dz, 0.0, hdz);
+            if (st) break;
+            TRIAL(1.0);
+            if (st) break;
+            if (restart) { /* C grew: the iteration again, as below */
+                HZ();
+                W_AT(0.0, y);
+                it--;
+                continue;
+            }
+            whole = sqrt(dot(m, rt, rt)) <= 0.5 * rn;
+            if (!whole) W_AT(0.0, y); /* (w back at this iteration's state) */
+        }
+        if (!whole && !(g0 < 0) && tmode == FFC_TANGENT_CONSISTENT) {
+            /* the consistent tangent is indefinite here: the material one's direction */
+            st = contact_eval(b, fn, ctx, w, FFC_TANGENT_MATERIAL, &nt, &fm, bad);
+            info->evals++;
+            if (!st) st = direction(b, nt, rho, dy, dz, ap, ad, q, tt, ss, &na, bad);
+            if (st) break;
+            if (na > info->support) info->support = na;
+            info->fallbacks++;
+            st = shared_gemv(b, m, m, 1.0, b->G, b->ld, dz, 0.0, gdz);
+            if (st) break;
+            g0 = dot(m, rho, gdz);
+        }
+        if (!whole && !(g0 < 0)) { status = FFC_INFO_NODESCENT; break; }
+        if (!whole) st = shared_gemv(b, nrb, m, 1.0, b->H, nrb, dz, 0.0, hdz);
+        if (st) break;
         double a = 1.0;
-        if (o->max_ls > 0) {
+        if (o->max_ls > 0 && !whole) {
             /* the root of g(a) on [0, 1] by regula falsi (Illinois), taken
-             * once |g| <= ls_tol |g(0)|, or a = 1 while g < 0 there */
+             * once |g| <= ls_tol |g(0)|, or a = 1 while g < 0 there, or
+             * a = 1 where |rho| has at least halved.  (The last: with
+             * friction the tangent is not symmetric, and g(0) = -dz' G Kt
+             * G dz can be small against |rho| |G dz|; on a pad in full
+             * slip the full step cut |rho| 7,500-fold while g(1) was
+             * -40 g(0), and the root of g, a = 0.14 at every iteration,
+             * converged linearly: 60 iterations, no convergence.) */
             double alo = 0.0, glo = g0, ahi = 1.0, ghi = 0.0, at = -1.0; /* at: the last trial's a (rt) */
             int side = 0;
             for (int ls = 0; ls < o->max_ls; ls++) {
@@ -1866,6 +1891,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
                 if (st || restart) break;
                 const double g = dot(m, rt, gdz);
                 if (fabs(g) <= o->ls_tol * fabs(g0) || (g < 0 && a == ahi)) break;
+                if (a == 1.0 && sqrt(dot(m, rt, rt)) <= 0.5 * rn) break;
                 if (g < 0) {
                     alo = a; glo = g;
                     if (side == -1) ghi *= 0.5;
