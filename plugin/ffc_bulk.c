@@ -79,6 +79,7 @@ struct ffc__bulk {
     double *tv;                /* [tcap] */
     long tcap;
     double *t_eval;            /* where contact_eval adds its wall time (seconds), or NULL */
+    double cstate[3];          /* the last contact evaluation's state (ffc__contact_fn: counts) */
     double *Mw, *Gw;           /* [wcap] the dense tangent and G on its support (a x a) */
     long wcap;
     /* the last dense LU of a condensed Newton direction, kept as the
@@ -1161,12 +1162,18 @@ static int contact_eval(ffc__bulk *b, ffc__contact_fn fn, void *ctx, const doubl
         }
         memset(b->r, 0, (size_t)b->n * sizeof(double));
         const double t0 = seconds();
-        int st = fn(ctx, w, tangent, b->r, tangent ? b->tcap : 0, b->ti, b->tj, b->tv, nt, fmag, bad);
+        int st = fn(ctx, w, tangent, b->r, tangent ? b->tcap : 0, b->ti, b->tj, b->tv, nt, fmag, b->cstate, bad);
         if (b->t_eval) *b->t_eval += seconds() - t0;
         if (st != FFC_ERR_CAPACITY || !tangent) return st;
         need = *nt + *nt / 2 + 64;
     }
     return FFC_ERR_CAPACITY;
+}
+
+/* the last evaluation's contact state that of s0: the law smooth between */
+static int same_state(const ffc__bulk *b, const double s0[3])
+{
+    return b->cstate[0] == s0[0] && b->cstate[1] == s0[1] && b->cstate[2] == s0[2];
 }
 
 /* Fp = F_C - sh_C y from the force in b->r; FFC_ERR_INDEX (*bad = the
@@ -1771,6 +1778,8 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
         if (st) break;
         for (long k = 0; k < m; k++) rho[k] = z[k] + Fp[k];
         const double rn = sqrt(dot(m, rho, rho));
+        double state0[3]; /* the contact state at z (the full step's test) */
+        memcpy(state0, b->cstate, sizeof state0);
         info->res = rn;
         const double tol = fmax(o->ftol, o->frel * fscale);
         /* converged: the force test; or the round-off floor within 1e3 of
@@ -1842,7 +1851,8 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
         int whole = 0; /* the full step, taken on |rho| alone */
         if (!(g0 < 0) && tmode == FFC_TANGENT_CONSISTENT) {
             /* g(0) >= 0 for the consistent tangent: first its full step,
-             * taken where it at least halves |rho| (with friction the
+             * taken where it at least halves |rho| and leaves the contact
+             * state as it was (with friction the
              * tangent is not symmetric and g need not fall along a good
              * Newton step: see the line search below) */
             st = shared_gemv(b, nrb, m, 1.0, b->H, nrb, dz, 0.0, hdz);
@@ -1855,7 +1865,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
                 it--;
                 continue;
             }
-            whole = sqrt(dot(m, rt, rt)) <= 0.5 * rn;
+            whole = sqrt(dot(m, rt, rt)) <= 0.5 * rn && same_state(b, state0);
             if (!whole) W_AT(0.0, y); /* (w back at this iteration's state) */
         }
         if (!whole && !(g0 < 0) && tmode == FFC_TANGENT_CONSISTENT) {
@@ -1877,7 +1887,8 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
         if (o->max_ls > 0 && !whole) {
             /* the root of g(a) on [0, 1] by regula falsi (Illinois), taken
              * once |g| <= ls_tol |g(0)|, or a = 1 while g < 0 there, or
-             * a = 1 where |rho| has at least halved.  (The last: with
+             * a = 1 where |rho| has at least halved with the contact state
+             * as it was (no kink of the law crossed).  (The last: with
              * friction the tangent is not symmetric, and g(0) = -dz' G Kt
              * G dz can be small against |rho| |G dz|; on a pad in full
              * slip the full step cut |rho| 7,500-fold while g(1) was
@@ -1891,7 +1902,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
                 if (st || restart) break;
                 const double g = dot(m, rt, gdz);
                 if (fabs(g) <= o->ls_tol * fabs(g0) || (g < 0 && a == ahi)) break;
-                if (a == 1.0 && sqrt(dot(m, rt, rt)) <= 0.5 * rn) break;
+                if (a == 1.0 && sqrt(dot(m, rt, rt)) <= 0.5 * rn && same_state(b, state0)) break;
                 if (g < 0) {
                     alo = a; glo = g;
                     if (side == -1) ghi *= 0.5;

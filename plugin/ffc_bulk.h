@@ -42,9 +42,10 @@ int ffc__bulk_saddle(ffc__bulk *b, long nt, const long Bi[], const long Bj[], co
  * is FFC_TANGENT_NONE, its tangent as triplets (ffc_scene_assemble's
  * contract: FFC_ERR_CAPACITY with the count needed in *nt); *fmag the
  * force scale of the convergence test (|Fx| + |Fy| + |Fz| of the total
- * normal contact force). */
+ * normal contact force); state[3] the contact state it found (active,
+ * sticking and sliding points: counts). */
 typedef int (*ffc__contact_fn)(void *ctx, const double u[], int tangent, double R[], long cap, long Ti[], long Tj[],
-                               double Tv[], long *nt, double *fmag, long *bad);
+                               double Tv[], long *nt, double *fmag, double state[3], long *bad);
 
 /* Newton's method on the condensed contact problem (see ffc_scene_newton);
  * rows[nr] the dofs the contact evaluation may read or load (its force

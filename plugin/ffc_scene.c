@@ -1492,7 +1492,7 @@ typedef struct {
 } newton_ctx;
 
 static int newton_contact(void *ctx, const double u[], int tangent, double R[], long cap, long Ti[], long Tj[],
-                          double Tv[], long *nt, double *fmag, long *bad)
+                          double Tv[], long *nt, double *fmag, double state[3], long *bad)
 {
     newton_ctx *c = ctx;
     if (c->v0)
@@ -1506,6 +1506,11 @@ static int newton_contact(void *ctx, const double u[], int tangent, double R[], 
         double f = 0.0;
         ffc_scene_stat(c->s, -1, name[i], 0, &f);
         *fmag += fabs(f);
+    }
+    const char *sname[3] = {"active", "stick", "slip"};
+    for (int i = 0; i < 3; i++) {
+        state[i] = 0.0;
+        ffc_scene_stat(c->s, -1, sname[i], 0, &state[i]);
     }
     return st;
 }
