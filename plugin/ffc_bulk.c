@@ -1170,12 +1170,6 @@ static int contact_eval(ffc__bulk *b, ffc__contact_fn fn, void *ctx, const doubl
     return FFC_ERR_CAPACITY;
 }
 
-/* the last evaluation's contact state that of s0: the law smooth between */
-static int same_state(const ffc__bulk *b, const double s0[3])
-{
-    return b->cstate[0] == s0[0] && b->cstate[1] == s0[1] && b->cstate[2] == s0[2];
-}
-
 /* Fp = F_C - sh_C y from the force in b->r; FFC_ERR_INDEX (*bad = the
  * dof) when the force reaches a free dof outside C */
 static int force_c(const ffc__bulk *b, const double y[], double Fp[], long *bad)
@@ -1198,6 +1192,15 @@ static double dot(long m, const double x[], const double y[])
     double v = 0.0;
     for (long k = 0; k < m; k++) v += x[k] * y[k];
     return v;
+}
+
+/* the full step taken on the residual alone (rt[m]: rho there, the last
+ * evaluation; rn: |rho| at the start, s0 its contact state): |rho| at
+ * least halved and the contact state as it was, no kink of the law between */
+static int full_step_taken(const ffc__bulk *b, long m, const double rt[], double rn, const double s0[3])
+{
+    return sqrt(dot(m, rt, rt)) <= 0.5 * rn && b->cstate[0] == s0[0] && b->cstate[1] == s0[1] &&
+           b->cstate[2] == s0[2];
 }
 
 enum { KRYLOV = 20 };       /* GMRES: basis vectors per cycle */
@@ -1865,20 +1868,21 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
                 it--;
                 continue;
             }
-            whole = sqrt(dot(m, rt, rt)) <= 0.5 * rn && same_state(b, state0);
-            if (!whole) W_AT(0.0, y); /* (w back at this iteration's state) */
-        }
-        if (!whole && !(g0 < 0) && tmode == FFC_TANGENT_CONSISTENT) {
-            /* the consistent tangent is indefinite here: the material one's direction */
-            st = contact_eval(b, fn, ctx, w, FFC_TANGENT_MATERIAL, &nt, &fm, bad);
-            info->evals++;
-            if (!st) st = direction(b, nt, rho, dy, dz, ap, ad, q, tt, ss, &na, bad);
-            if (st) break;
-            if (na > info->support) info->support = na;
-            info->fallbacks++;
-            st = shared_gemv(b, m, m, 1.0, b->G, b->ld, dz, 0.0, gdz);
-            if (st) break;
-            g0 = dot(m, rho, gdz);
+            whole = full_step_taken(b, m, rt, rn, state0);
+            if (!whole) {
+                /* the consistent tangent is indefinite here: the material
+                 * one's direction (w back at this iteration's state) */
+                W_AT(0.0, y);
+                st = contact_eval(b, fn, ctx, w, FFC_TANGENT_MATERIAL, &nt, &fm, bad);
+                info->evals++;
+                if (!st) st = direction(b, nt, rho, dy, dz, ap, ad, q, tt, ss, &na, bad);
+                if (st) break;
+                if (na > info->support) info->support = na;
+                info->fallbacks++;
+                st = shared_gemv(b, m, m, 1.0, b->G, b->ld, dz, 0.0, gdz);
+                if (st) break;
+                g0 = dot(m, rho, gdz);
+            }
         }
         if (!whole && !(g0 < 0)) { status = FFC_INFO_NODESCENT; break; }
         if (!whole) st = shared_gemv(b, nrb, m, 1.0, b->H, nrb, dz, 0.0, hdz);
@@ -1902,7 +1906,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
                 if (st || restart) break;
                 const double g = dot(m, rt, gdz);
                 if (fabs(g) <= o->ls_tol * fabs(g0) || (g < 0 && a == ahi)) break;
-                if (a == 1.0 && sqrt(dot(m, rt, rt)) <= 0.5 * rn && same_state(b, state0)) break;
+                if (a == 1.0 && full_step_taken(b, m, rt, rn, state0)) break;
                 if (g < 0) {
                     alo = a; glo = g;
                     if (side == -1) ghi *= 0.5;
