@@ -937,6 +937,8 @@ typedef struct {
     long reused;         /* condensed Newton calls whose first solve was the last call's closing one (count) */
     int factor_ranks;    /* CHOLMOD on every rank: the ranks of this machine that share one factor, made
                             by one of them with their cores' BLAS threads (1: this rank's own factor) */
+    int factor_split;    /* of them, the ranks that made the last factorization's subtrees, each its share,
+                            before the supernodes above them (1: one rank made it all) */
 } ffc_solve_info;
 
 /* Sets K from its triplets (Ti, Tj, Tv)[nt] (both triangles; duplicates

@@ -13,6 +13,7 @@
 #include "ffc_internal.h"
 #include "ffc_mumps.h"
 #include "ffc_pdense.h"
+#include "ffc_super.h"
 
 /* BLAS and LAPACK */
 void dtrsm_(const char *side, const char *uplo, const char *ta, const char *diag, const int *m, const int *n,
@@ -108,6 +109,7 @@ struct ffc__bulk {
     int nrank, nsize;          /* this rank among them, their count: rank 0 factorizes K with the BLAS
                                   threads of them all, into memory they share */
     double *wbase;             /* [L->xsize] that memory: L->x on each of them (NULL: L->x is CHOLMOD's) */
+    int split;                 /* 1: the last factor made by subtrees on the machine's ranks (ffc_super.c) */
     int win;                   /* its handle (MPI window) */
     /* the pruned solves of a supernodal factor (pruned_block), made with the factor */
     int prune;                 /* 1: compliance columns by pruned solves when L is supernodal (default) */
@@ -166,6 +168,7 @@ static void bulk_free_factor(ffc__bulk *b)
     if (b->L) cholmod_free_factor(&b->L, &b->cc);
     if (b->wbase) ffc__mpi_shared_free(b->win);
     b->wbase = NULL;
+    b->split = 0;
     prune_free(b);
     b->prev = 0;
     b->factored = 0;
@@ -452,7 +455,33 @@ static int numeric_on_node(ffc__bulk *b, cholmod_sparse *A)
     }
     if (!all_ranks(b, st == FFC_OK)) return st ? st : FFC_ERR_MEMORY;
     double head[2] = {0.0, 0.0};   /* rank 0's status and rcond */
-    if (b->nrank == 0) {
+    /* the supernodal tree's subtrees shared out among the machine's ranks
+     * (ffc_super.c), each factorized by one of them into the shared L,
+     * then the supernodes above them by rank 0 with the BLAS threads;
+     * where that does not apply (on some rank of the machine), rank 0
+     * factorizes the whole with CHOLMOD and the threads */
+    int sst = FFC_OK;
+    ffc__super *sp = ffc__super_create(b->L, A, b->nsize, &sst);
+    const int split = ffc__mpi_min(b->ncomm, sp != NULL);
+    b->split = split;
+    if (split) {
+        const int mine = ffc__super_numeric(sp, b->L, x, b->nrank) == FFC_OK;
+        ffc__mpi_shared_sync(win);   /* (every rank's supernodes seen by rank 0) */
+        const int all = ffc__mpi_min(b->ncomm, mine);
+        if (b->nrank == 0) {
+            head[0] = all ? FFC_OK : FFC_ERR_SINGULAR;
+            if (all) {
+                const int old = ffc__blas_threads(threads);
+                head[0] = ffc__super_numeric(sp, b->L, x, -1);
+                ffc__blas_threads(old);
+            }
+            if (head[0] == FFC_OK) {
+                b->info.rcond = cholmod_rcond(b->L, &b->cc);
+                if (!(b->info.rcond >= 1e-12)) head[0] = FFC_ERR_SINGULAR;
+            }
+            head[1] = b->info.rcond;
+        }
+    } else if (b->nrank == 0) {
         const int old = ffc__blas_threads(threads);
         head[0] = numeric(b, A);
         ffc__blas_threads(old);
@@ -463,6 +492,7 @@ static int numeric_on_node(ffc__bulk *b, cholmod_sparse *A)
         }
         head[1] = b->info.rcond;
     }
+    ffc__super_free(sp);
     if ((st = ffc__mpi_bcast_idle(b->ncomm, head, 2))) return st;
     ffc__mpi_shared_sync(win);   /* (rank 0's values seen by every rank) */
     b->info.rcond = head[1];
@@ -935,6 +965,7 @@ void ffc__bulk_info(const ffc__bulk *b, ffc_solve_info *info)
     else memset(info, 0, sizeof *info);
     info->ranks = b ? b->rsize : 1;
     info->factor_ranks = b && b->wbase ? b->nsize : 1;
+    info->factor_split = b && b->wbase && b->split ? b->nsize : 1;
     if (b && b->mp) ffc__mumps_info(b->mp, &info->ranks, &info->factor_mb, &info->factor_mb_max);
 }
 

@@ -1745,7 +1745,8 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "columnsTime") return in.t_columns;
     if (k == "reused") return in.reused;
     if (k == "factorRanks") return in.factor_ranks;
-    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, evaluationsShared, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, reused, factorRanks");
+    if (k == "factorSplit") return in.factor_split;
+    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, evaluationsShared, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, reused, factorRanks, factorSplit");
     return 0;
 }
 

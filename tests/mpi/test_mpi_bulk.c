@@ -358,11 +358,12 @@ static void test_shared_lu(void **state)
  * and H (same bits) as one process's computing them all, in the same
  * order; C grown in two calls (72 columns, two blocks of solves on one
  * process; then 30: the shares are uneven on 4 ranks), some columns
- * outside the rows R.  The ranks (one machine) share one factor, made by
- * rank 0 with their BLAS threads.  Without Dirichlet rows (tgv 0) K is
- * singular: rank 0's factorization fails, and every rank returns it, as
- * one process does.  Tolerance: the same solves of
- * factors that differ by the threads' order of sums, 1e-14 of K^-1's
+ * outside the rows R.  The ranks (one machine) share one factor: each
+ * makes its share of the subtrees of the supernodal tree, rank 0 the
+ * supernodes above them with their BLAS threads.  Without Dirichlet rows
+ * (tgv 0) K is singular: the factorization fails, and every rank returns
+ * it, as one process does.  Tolerance: the same solves of factors whose
+ * sums differ in order (CHOLMOD's and ffc_super.c's), 1e-14 of K^-1's
  * largest entry (K's condition below 1e3). */
 static void replicated_columns(double tgv)
 {
@@ -404,6 +405,7 @@ static void replicated_columns(double tgv)
     ffc__bulk_info(b[1], &in);
     assert_int_equal(in.ranks, ranks);
     assert_int_equal(in.factor_ranks, ranks);   /* (mpiexec on one machine) */
+    assert_int_equal(in.factor_split, ranks);   /* (its subtrees made by the ranks, ffc_super.c) */
     assert_int_equal(in.columns, CT);
     assert_int_equal(in.factorizations, 1);
     if (ranks > 1) assert_true(in.backsolves < CT);   /* each rank solved its share only */
