@@ -87,6 +87,22 @@ static void check_factor(const cholmod_factor *ref, cholmod_factor *mine, cholmo
     cholmod_free_dense(&r, cc);
 }
 
+/* the sets' values (in any order: the last first), those above them,
+ * checked against CHOLMOD's; everything freed */
+static void factor_check_free(ffc__super *w, int parts, cholmod_factor *ref, cholmod_factor *mine, cholmod_sparse *A,
+                              cholmod_common *cc)
+{
+    for (int p = parts - 1; p >= 0; p--)
+        assert_int_equal(ffc__super_numeric(w, mine, mine->x, p), FFC_OK);
+    assert_int_equal(ffc__super_numeric(w, mine, mine->x, -1), FFC_OK);
+    check_factor(ref, mine, A, cc);
+    ffc__super_free(w);
+    cholmod_free_factor(&ref, cc);
+    cholmod_free_factor(&mine, cc);
+    cholmod_free_sparse(&A, cc);
+    cholmod_finish(cc);
+}
+
 static void by_parts(int parts, int bodies)
 {
     cholmod_common cc;
@@ -113,15 +129,7 @@ static void by_parts(int parts, int bodies)
         assert_close(ffc__super_share(w, 0), 0.5, 1e-12);
         assert_close(ffc__super_share(w, 1), 0.5, 1e-12);
     }
-    for (int p = parts - 1; p >= 0; p--)   /* (the sets in any order) */
-        assert_int_equal(ffc__super_numeric(w, mine, mine->x, p), FFC_OK);
-    assert_int_equal(ffc__super_numeric(w, mine, mine->x, -1), FFC_OK);
-    check_factor(ref, mine, A, &cc);
-    ffc__super_free(w);
-    cholmod_free_factor(&ref, &cc);
-    cholmod_free_factor(&mine, &cc);
-    cholmod_free_sparse(&A, &cc);
-    cholmod_finish(&cc);
+    factor_check_free(w, parts, ref, mine, A, &cc);
 }
 
 static void test_one_set(void **state) { (void)state; by_parts(1, 1); }
@@ -187,14 +195,7 @@ static void test_no_gain(void **state)
     assert_int_equal(st, FFC_ERR_UNAVAILABLE);
     ffc__super *w = ffc__super_create(mine, A, 1, &st);
     assert_non_null(w);
-    assert_int_equal(ffc__super_numeric(w, mine, mine->x, 0), FFC_OK);
-    assert_int_equal(ffc__super_numeric(w, mine, mine->x, -1), FFC_OK);
-    check_factor(ref, mine, A, &cc);
-    ffc__super_free(w);
-    cholmod_free_factor(&ref, &cc);
-    cholmod_free_factor(&mine, &cc);
-    cholmod_free_sparse(&A, &cc);
-    cholmod_finish(&cc);
+    factor_check_free(w, 1, ref, mine, A, &cc);
 }
 
 int main(void)
