@@ -28,9 +28,9 @@ struct ffc__super {
     signed char *part;   /* [ns] the set of each supernode: 0..parts-1, -1 above the subtrees */
     double *wt;          /* [ns] the flops of computing each supernode: its own and the updates it receives */
     double *share;       /* [parts + 1] the estimated flops of each set, as shares (the last: -1's) */
-    int parts;
+    int parts;           /* the sets of subtrees (count) */
     double *c;           /* [ccap] one update block */
-    long ccap;
+    long ccap;           /* the largest update block (entries) */
 };
 
 void ffc__super_free(ffc__super *w)

@@ -16,10 +16,12 @@ ffc__super *ffc__super_create(const cholmod_factor *L, const cholmod_sparse *A, 
 void ffc__super_free(ffc__super *w);
 
 /* The values of the supernodes of set `part` (0..parts-1: its subtrees;
- * every part's call first, in any order or at once, each into the same
- * L->x), then those of part -1 (the supernodes above them, once every
- * part's values are in Lx).  FFC_ERR_SINGULAR where a pivot is not
- * positive (A not positive definite). */
+ * every part's call first, in any order or at once, each with a work of
+ * its own, into the same Lx), then those of part -1 (the supernodes
+ * above them, once every part's values are in Lx; with a work that made
+ * some part's call: it followed the other parts' lists of updates).
+ * FFC_ERR_SINGULAR where a pivot is not positive (A not positive
+ * definite); FFC_ERR_SIZE for a part out of range. */
 int ffc__super_numeric(ffc__super *w, const cholmod_factor *L, double Lx[], int part);
 
 /* the share of the estimated flops of part `part` (-1: above the subtrees) */
