@@ -109,7 +109,7 @@ struct ffc__bulk {
     int nrank, nsize;          /* this rank among them, their count: rank 0 factorizes K with the BLAS
                                   threads of them all, into memory they share */
     double *wbase;             /* [L->xsize] that memory: L->x on each of them (NULL: L->x is CHOLMOD's) */
-    int split;                 /* 1: the last factor made by subtrees on the machine's ranks (ffc_super.c) */
+    int split;                 /* the machine's ranks that made the last factor's subtrees (ffc_super.c; 0: none) */
     int win;                   /* its handle (MPI window) */
     /* the pruned solves of a supernodal factor (pruned_block), made with the factor */
     int prune;                 /* 1: compliance columns by pruned solves when L is supernodal (default) */
@@ -456,16 +456,23 @@ static int numeric_on_node(ffc__bulk *b, cholmod_sparse *A)
     if (!all_ranks(b, st == FFC_OK)) return st ? st : FFC_ERR_MEMORY;
     double head[2] = {0.0, 0.0};   /* rank 0's status and rcond */
     /* the supernodal tree's subtrees shared out among the machine's ranks
-     * (ffc_super.c), each factorized by one of them into the shared L,
-     * then the supernodes above them by rank 0 with the BLAS threads;
-     * where that does not apply (on some rank of the machine), rank 0
-     * factorizes the whole with CHOLMOD and the threads */
+     * (ffc_super.c), as many sets as threads (the fewest ranks of any
+     * machine: every machine the same split, the same bits), each
+     * factorized by one rank on one core into the shared L, then the
+     * supernodes above them by rank 0 with the BLAS threads; where that
+     * does not apply (on some rank), rank 0 factorizes the whole with
+     * CHOLMOD and the threads */
     int sst = FFC_OK;
-    ffc__super *sp = ffc__super_create(b->L, A, b->nsize, &sst);
-    const int split = ffc__mpi_min(b->ncomm, sp != NULL);
-    b->split = split;
+    ffc__super *sp = ffc__super_create(b->L, A, threads, &sst);
+    const int split = all_ranks(b, sp != NULL);
+    b->split = split ? threads : 0;
     if (split) {
-        const int mine = ffc__super_numeric(sp, b->L, x, b->nrank) == FFC_OK;
+        int mine = 1;
+        if (b->nrank < threads) {
+            const int old = ffc__blas_threads(1);
+            mine = ffc__super_numeric(sp, b->L, x, b->nrank) == FFC_OK;
+            ffc__blas_threads(old);
+        }
         ffc__mpi_shared_sync(win);   /* (every rank's supernodes seen by rank 0) */
         const int all = ffc__mpi_min(b->ncomm, mine);
         if (b->nrank == 0) {
@@ -965,7 +972,7 @@ void ffc__bulk_info(const ffc__bulk *b, ffc_solve_info *info)
     else memset(info, 0, sizeof *info);
     info->ranks = b ? b->rsize : 1;
     info->factor_ranks = b && b->wbase ? b->nsize : 1;
-    info->factor_split = b && b->wbase && b->split ? b->nsize : 1;
+    info->factor_split = b && b->wbase && b->split ? b->split : 1;
     if (b && b->mp) ffc__mumps_info(b->mp, &info->ranks, &info->factor_mb, &info->factor_mb_max);
 }
 
