@@ -106,8 +106,8 @@ struct ffc__bulk {
     int rrank, rsize;          /* this rank, the ranks (rsize 1: one process, nothing shared) */
     long *rcount;              /* [rsize] work: the values each rank solved */
     int ncomm;                 /* the ranks of rcomm on this machine (Fortran handle; valid when nsize > 1) */
-    int nrank, nsize;          /* this rank among them, their count: rank 0 factorizes K with the BLAS
-                                  threads of them all, into memory they share */
+    int nrank, nsize;          /* this rank among them, their count: they factorize K into memory they
+                                  share (numeric_on_node) */
     double *wbase;             /* [L->xsize] that memory: L->x on each of them (NULL: L->x is CHOLMOD's) */
     int split;                 /* the machine's ranks that made the last factor's subtrees (ffc_super.c; 0: none) */
     int win;                   /* its handle (MPI window) */
@@ -405,23 +405,31 @@ static int backsolve(ffc__bulk *b, const double rhs[], double y[])
     return FFC_OK;
 }
 
+/* b->info.rcond of the numeric b->L; a factor whose estimate is below
+ * 1e-12 is refused (FFC_ERR_SINGULAR) */
+static int conditioned(ffc__bulk *b)
+{
+    b->info.rcond = cholmod_rcond(b->L, &b->cc);
+    return b->info.rcond >= 1e-12 ? FFC_OK : FFC_ERR_SINGULAR;
+}
+
 /* The numeric factorization of A into the analysed b->L; b->info.rcond */
 static int numeric(ffc__bulk *b, cholmod_sparse *A)
 {
     cholmod_factorize(A, b->L, &b->cc);
     if (b->cc.status == CHOLMOD_NOT_POSDEF || b->L->minor < b->L->n) return FFC_ERR_SINGULAR;
     if (b->cc.status < CHOLMOD_OK) return FFC_ERR_MEMORY;
-    b->info.rcond = cholmod_rcond(b->L, &b->cc);
-    return b->info.rcond >= 1e-12 ? FFC_OK : FFC_ERR_SINGULAR;
+    return conditioned(b);
 }
 
 /* The same on the ranks of each machine (replicated bulk, a supernodal L,
  * every rank with a machine-mate; called on every rank): L's values in
- * memory the machine's ranks share; their rank 0 factorizes into it with
- * BLAS threads, while the others wait without spinning, and every rank
- * then solves with the one factor (one copy per machine instead of one
- * per rank).  The threads are the fewest ranks any machine has, so that
- * every machine's factor has the same bits.  L's structure, from the same
+ * memory the machine's ranks share; they factorize into it by subtrees
+ * (below), their rank 0 the rest with BLAS threads while the others wait
+ * without spinning, and every rank then solves with the one factor (one
+ * copy per machine instead of one per rank).  The threads are the fewest
+ * ranks any machine has, so that every machine's factor has the same
+ * bits.  L's structure, from the same
  * analysis of the same matrix, is the same on every rank: checked first,
  * and where it is not on some machine (or its shared memory is refused),
  * every rank factorizes for itself.  The decisions are every rank's. */
@@ -482,10 +490,7 @@ static int numeric_on_node(ffc__bulk *b, cholmod_sparse *A)
                 head[0] = ffc__super_numeric(sp, b->L, x, -1);
                 ffc__blas_threads(old);
             }
-            if (head[0] == FFC_OK) {
-                b->info.rcond = cholmod_rcond(b->L, &b->cc);
-                if (!(b->info.rcond >= 1e-12)) head[0] = FFC_ERR_SINGULAR;
-            }
+            if (head[0] == FFC_OK) head[0] = conditioned(b);
             head[1] = b->info.rcond;
         }
     } else if (b->nrank == 0) {

@@ -1500,17 +1500,14 @@ static int newton_contact(void *ctx, const double u[], int tangent, double R[], 
     int any = 0;
     const int st = scene_assemble(c->s, u, tangent, R, cap, Ti, Tj, Tv, nt, bad, c->share, &any);
     c->shared += any && st != FFC_ERR_CAPACITY;   /* (a retry with more room is the same evaluation) */
-    const char *name[3] = {"Fx", "Fy", "Fz"};
+    const char *force[3] = {"Fx", "Fy", "Fz"}, *count[3] = {"active", "stick", "slip"};
     *fmag = 0.0;
     for (int i = 0; i < 3; i++) {
         double f = 0.0;
-        ffc_scene_stat(c->s, -1, name[i], 0, &f);
+        ffc_scene_stat(c->s, -1, force[i], 0, &f);
         *fmag += fabs(f);
-    }
-    const char *sname[3] = {"active", "stick", "slip"};
-    for (int i = 0; i < 3; i++) {
         state[i] = 0.0;
-        ffc_scene_stat(c->s, -1, sname[i], 0, &state[i]);
+        ffc_scene_stat(c->s, -1, count[i], 0, &state[i]);
     }
     return st;
 }
