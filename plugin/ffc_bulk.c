@@ -117,6 +117,8 @@ struct ffc__bulk {
     int *ipm;                  /* [n] position of each dof in L's order (the inverse of L->Perm) */
     int *sn;                   /* [n] the supernode of each of L's columns */
     int *spar;                 /* [nsuper] each supernode's parent in the supernodal elimination tree, or -1 */
+    int *sroot;                /* [nsuper] the root of each supernode's tree (the forest has one tree per
+                                  part of K that nothing couples: each body, before contact) */
     unsigned char *smark;      /* [nsuper] work: 1 on the supernodes a solve visits */
     double *sw;                /* [swcap] work: a supernode's rows below its diagonal block x BLOCK */
     double pshare;             /* the share of L's entries the last pruned backward solves visited */
@@ -144,8 +146,8 @@ static int agree(const ffc__bulk *b, int st)
 /* drops the pruned solves' tree and work (made again with the next factor) */
 static void prune_free(ffc__bulk *b)
 {
-    free(b->ipm); free(b->sn); free(b->spar); free(b->smark); free(b->sw);
-    b->ipm = b->sn = b->spar = NULL;
+    free(b->ipm); free(b->sn); free(b->spar); free(b->sroot); free(b->smark); free(b->sw);
+    b->ipm = b->sn = b->spar = b->sroot = NULL;
     b->smark = NULL;
     b->sw = NULL;
     b->swcap = 0;
@@ -611,10 +613,10 @@ static int factorize_first(ffc__bulk *b, long nnew, const long nd[])
     return st;
 }
 
-/* The supernodal elimination tree of L (parent of supernode s: the one
- * holding the first row below s's diagonal block), with each dof's
- * position in L's order and each position's supernode; made once per
- * factor. */
+/* The supernodal elimination forest of L (parent of supernode s: the one
+ * holding the first row below s's diagonal block, so after s), each
+ * supernode's root, each dof's position in L's order and each position's
+ * supernode; made once per factor. */
 static int prune_tree(ffc__bulk *b)
 {
     if (b->ipm) return FFC_OK;
@@ -624,6 +626,7 @@ static int prune_tree(ffc__bulk *b)
     b->ipm = malloc((size_t)n * sizeof(int));
     b->sn = malloc((size_t)n * sizeof(int));
     b->spar = malloc((size_t)ns * sizeof(int));
+    b->sroot = malloc((size_t)ns * sizeof(int));
     b->smark = calloc((size_t)ns, 1);
     long wrow = 0;
     for (long k = 0; k < ns; k++) {
@@ -632,7 +635,7 @@ static int prune_tree(ffc__bulk *b)
     }
     b->swcap = (wrow > 0 ? wrow : 1) * BLOCK;
     b->sw = malloc((size_t)b->swcap * sizeof(double));
-    if (!b->ipm || !b->sn || !b->spar || !b->smark || !b->sw) {
+    if (!b->ipm || !b->sn || !b->spar || !b->sroot || !b->smark || !b->sw) {
         prune_free(b);
         return FFC_ERR_MEMORY;
     }
@@ -643,6 +646,7 @@ static int prune_tree(ffc__bulk *b)
         const int ncol = super[k + 1] - super[k], nrow = pi[k + 1] - pi[k];
         b->spar[k] = nrow > ncol ? b->sn[ls[pi[k] + ncol]] : -1;
     }
+    for (long k = ns - 1; k >= 0; k--) b->sroot[k] = b->spar[k] < 0 ? (int)k : b->sroot[b->spar[k]];
     return FFC_OK;
 }
 
@@ -651,6 +655,12 @@ static void prune_mark(const ffc__bulk *b, long nd, const long d[])
 {
     for (long k = 0; k < nd; k++)
         for (int s = b->sn[b->ipm[d[k]]]; s >= 0 && !b->smark[s]; s = b->spar[s]) b->smark[s] = 1;
+}
+
+/* the root of the tree that holds dof i's column of L */
+static int prune_root(const ffc__bulk *b, long i)
+{
+    return b->sroot[b->sn[b->ipm[i]]];
 }
 
 /* Formulation: P K' P' = L L' (CHOLMOD's supernodal factor, P = L->Perm),
@@ -663,10 +673,14 @@ static void prune_mark(const ffc__bulk *b, long nd, const long d[])
  * columns read on the rows C u new u R take the forward solve over the
  * block's paths (Fw) and the backward solve over the rows' paths (bw),
  * not all of L: on Hertz P1 h_c = 0.0125 about 25 % and 65 % of L's
- * entries, against 100 % twice.  X (n x BLOCK, in L's order) is zero on
- * entry; the block's dofs are among the rows, so Fw lies in bw, and bw's
- * rows are cleared at the end.  The values on rows[nrows] go to
- * V (nrows x nb). */
+ * entries, against 100 % twice.  Where K has parts that nothing couples
+ * (the bodies of a scene: L's forest has a tree for each), z and x are
+ * zero outside the trees of the block's dofs, so the backward solve takes
+ * bw in the block's tree alone (the caller makes blocks of one tree):
+ * on Hertz's two bodies that halves it.  X (n x BLOCK, in L's order) is
+ * zero on entry; the block's dofs are among the rows, so Fw lies in bw,
+ * and the rows the backward solve visited are cleared at the end.  The
+ * values on rows[nrows] go to V (nrows x nb). */
 static void pruned_block(ffc__bulk *b, long nbl, const long d[], const unsigned char bw[], long nrows,
                          const long rows[], double V[])
 {
@@ -676,6 +690,7 @@ static void pruned_block(ffc__bulk *b, long nbl, const long d[], const unsigned 
     const double *lx = L->x, one = 1.0, zero = 0.0, mone = -1.0;
     const int ldx = (int)n, nb = (int)nbl;
     double *X = b->Bb->x, *W = b->sw;
+    const int *sroot = b->sroot, tree = prune_root(b, d[0]);
     for (long k = 0; k < nbl; k++) X[b->ipm[d[k]] + k * n] = 1.0;
     prune_mark(b, nbl, d);   /* Fw */
     for (long s = 0; s < ns; s++) {   /* forward, children before parents */
@@ -691,7 +706,7 @@ static void pruned_block(ffc__bulk *b, long nbl, const long d[], const unsigned 
             for (int r = 0; r < below; r++) X[ri[r] + c * n] -= W[r + c * below];
     }
     for (long s = ns - 1; s >= 0; s--) {   /* backward, parents before children */
-        if (!bw[s]) continue;
+        if (!bw[s] || sroot[s] != tree) continue;
         const int k1 = super[s], ncol = super[s + 1] - k1, nrow = pi[s + 1] - pi[s], below = nrow - ncol;
         const double *Ls = lx + px[s];
         if (below > 0) {
@@ -705,7 +720,7 @@ static void pruned_block(ffc__bulk *b, long nbl, const long d[], const unsigned 
     for (long k = 0; k < nbl; k++)
         for (long r = 0; r < nrows; r++) V[r + k * nrows] = X[b->ipm[rows[r]] + k * n];
     for (long s = 0; s < ns; s++)
-        if (bw[s])
+        if (bw[s] && sroot[s] == tree)
             for (long c = 0; c < nbl; c++)
                 memset(X + super[s] + c * n, 0, (size_t)(super[s + 1] - super[s]) * sizeof(double));
 }
@@ -727,12 +742,16 @@ static int whole_block(ffc__bulk *b, long nbl, const long d[], long nrows, const
 }
 
 /* the columns of K'^-1 at the dofs d[nc] on rows[nrows] into V (nrows x
- * nc), BLOCK at a time (bw: the rows' paths when pruned, else NULL) */
+ * nc), BLOCK at a time (bw: the rows' paths when pruned, else NULL; then
+ * a block ends where the dofs' tree of L changes too) */
 static int columns_on_rows(ffc__bulk *b, long nc, const long d[], const unsigned char *bw, long nrows,
                            const long rows[], double V[])
 {
-    for (long k0 = 0; k0 < nc; k0 += BLOCK) {
-        const long nbl = nc - k0 < BLOCK ? nc - k0 : BLOCK;
+    for (long k0 = 0, nbl; k0 < nc; k0 += nbl) {
+        nbl = nc - k0 < BLOCK ? nc - k0 : BLOCK;
+        if (bw)
+            for (long k = 1; k < nbl; k++)
+                if (prune_root(b, d[k0 + k]) != prune_root(b, d[k0])) { nbl = k; break; }
         if (bw) pruned_block(b, nbl, d + k0, bw, nrows, rows, V + k0 * nrows);
         else {
             const int st = whole_block(b, nbl, d + k0, nrows, rows, V + k0 * nrows);
@@ -753,6 +772,20 @@ static void rank_share(ffc__bulk *b, long n, long unit, long *lo, long *hi)
     *hi = n * (b->rrank + 1) / b->rsize;
 }
 
+/* the same share with the items weighted by w[n] (each rank's weight about
+ * 1 / rsize of the sum, an item to the rank that holds its middle) */
+static void rank_share_by(ffc__bulk *b, long n, const double w[], long unit, long *lo, long *hi)
+{
+    double all = 0.0, acc = 0.0;
+    for (long k = 0; k < n; k++) all += w[k];
+    for (long r = 0, k0 = 0, k = 0; r < b->rsize; r++, k0 = k) {
+        const double goal = all * (double)(r + 1) / b->rsize;
+        while (k < n && (r == b->rsize - 1 || acc + 0.5 * w[k] < goal)) acc += w[k++];
+        b->rcount[r] = (k - k0) * unit;
+        if (r == b->rrank) { *lo = k0; *hi = k; }
+    }
+}
+
 /* The compliance columns of the dofs nd[nnew]: their values on the rows
  * read (C, the new dofs, R: each once), in pieces of at most INV_ENTRIES
  * values, each column put into the zero vector x on those rows only,
@@ -764,7 +797,8 @@ static void rank_share(ffc__bulk *b, long n, long unit, long *lo, long *hi)
  *   back-solves;
  * - CHOLMOD replicated on the ranks of a communicator: each rank solves
  *   a contiguous share of each piece and the shares are gathered, so that
- *   every rank keeps every column.
+ *   every rank keeps every column (pruned: shares of equal work, a
+ *   column's being its tree's part of the backward solves).
  * With several ranks every rank takes the same branches: a failure on one
  * is every rank's (FFC_ERR_MEMORY when it was another's). */
 enum { INV_ENTRIES = 1 << 21 };   /* values per piece (MUMPS's transient work: about 20 bytes each, 40 MB;
@@ -781,6 +815,7 @@ static int add_columns_timed(ffc__bulk *b, long nnew, const long nd[])
     long *d = malloc((size_t)(nnew + 1) * sizeof *d);
     double *x = calloc((size_t)n, sizeof *x);
     unsigned char *bw = pruned ? calloc((size_t)b->L->nsuper, 1) : NULL;
+    double *tw = pruned && b->rsize > 1 ? calloc((size_t)b->L->nsuper + (size_t)nnew, sizeof *tw) : NULL;
     if (rows && x)
         for (long k = 0; k < m0 + nnew + b->nr; k++) {
             const long i = k < m0 ? b->dof[k] : k < m0 + nnew ? nd[k - m0] : b->rows[k - m0 - nnew];
@@ -790,7 +825,8 @@ static int add_columns_timed(ffc__bulk *b, long nnew, const long nd[])
         for (long r = 0; r < nrows; r++) x[rows[r]] = 0.0;
     const long chunk = nrows > 0 && INV_ENTRIES / nrows > 0 ? INV_ENTRIES / nrows : 1;
     double *V = malloc((size_t)(nrows > 0 ? nrows : 1) * (nnew < chunk ? nnew : chunk) * sizeof *V);
-    st = agree(b, rows && d && x && V && (!pruned || bw) ? FFC_OK : FFC_ERR_MEMORY);
+    st = agree(b, rows && d && x && V && (!pruned || bw) && (!pruned || b->rsize == 1 || tw) ? FFC_OK
+                                                                                            : FFC_ERR_MEMORY);
     if (!st) {
         memcpy(d, nd, (size_t)nnew * sizeof *d);
         if (pruned) {   /* the new columns in the factor's order; the rows' paths */
@@ -806,16 +842,20 @@ static int add_columns_timed(ffc__bulk *b, long nnew, const long nd[])
                 const double e = (double)(super[k + 1] - super[k]) * (pi[k + 1] - pi[k]);
                 all += e;
                 vis += bw[k] ? e : 0.0;
+                if (tw && bw[k]) tw[b->sroot[k]] += e;   /* each tree's backward work */
             }
             b->pshare = vis / all;
+            if (tw)   /* each column's work, after the trees' */
+                for (long k = 0; k < nnew; k++) tw[b->L->nsuper + k] = tw[prune_root(b, d[k])];
         }
     }
     for (long k0 = 0; k0 < nnew && !st; k0 += chunk) {
         const long nc = nnew - k0 < chunk ? nnew - k0 : chunk;
         if (b->mp) st = ffc__mumps_inverse(b->mp, nc, d + k0, nrows, rows, V);
         else if (b->rsize > 1) {
-            long lo, hi;
-            rank_share(b, nc, nrows, &lo, &hi);
+            long lo = 0, hi = 0;
+            if (tw) rank_share_by(b, nc, tw + b->L->nsuper + k0, nrows, &lo, &hi);
+            else rank_share(b, nc, nrows, &lo, &hi);
             st = agree(b, columns_on_rows(b, hi - lo, d + k0 + lo, bw, nrows, rows, V + lo * nrows));
             if (!st) st = ffc__mpi_allgather(b->rcomm, V, b->rcount);
         } else
@@ -829,7 +869,7 @@ static int add_columns_timed(ffc__bulk *b, long nnew, const long nd[])
             if (!st) b->m++;
         }
     }
-    free(rows); free(d); free(x); free(bw); free(V);
+    free(rows); free(d); free(x); free(bw); free(tw); free(V);
     if (st) return st;
     b->info.columns += nnew;
     return FFC_OK;

@@ -225,4 +225,35 @@ static inline void test_lattice_sets(int ln, long rows[], long nd1[LATTICE_C1], 
     for (long k = 0; k < 9; k++) nd2[LATTICE_C2 - 9 + k] = 3L * ln * ln * 2 + 5 * k + 2;
 }
 
+
+/* Two such lattices that nothing couples (two bodies before contact: K
+ * block diagonal, L's supernodal forest of two trees), the second's dofs
+ * after the first's: n = 6 ln^3.  Triplets (at most 80 ln^3) and, unless
+ * Kd is NULL, the dense copy Kd[n * n].  Returns the triplets' count. */
+static inline long test_lattice_pair(int ln, double tgv, long Ti[], long Tj[], double Tv[], double *Kd)
+{
+    const long n1 = 3L * ln * ln * ln, t1 = test_lattice(ln, tgv, Ti, Tj, Tv, NULL);
+    const long t2 = test_lattice(ln, tgv, Ti + t1, Tj + t1, Tv + t1, NULL);
+    for (long k = t1; k < t1 + t2; k++) { Ti[k] += n1; Tj[k] += n1; }
+    if (Kd) {
+        memset(Kd, 0, sizeof(double) * 4 * n1 * n1);
+        for (long k = 0; k < t1 + t2; k++) Kd[Ti[k] * 2 * n1 + Tj[k]] += Tv[k];
+    }
+    return t1 + t2;
+}
+
+/* Their contact sets: R = both top planes (6 ln^2 rows); nd1 = 72 dofs of
+ * the top planes, the bodies' alternating (a block of solves holds both
+ * trees); nd2 = the second body's nd2 of test_lattice_sets (some interior
+ * dofs).  6 <= ln <= 16. */
+static inline void test_lattice_pair_sets(int ln, long rows[], long nd1[LATTICE_C1], long nd2[LATTICE_C2])
+{
+    const long n1 = 3L * ln * ln * ln, nr = 3L * ln * ln;
+    long r1[3 * 16 * 16], a1[LATTICE_C1];
+    test_lattice_sets(ln, r1, a1, nd2);
+    for (long k = 0; k < nr; k++) { rows[k] = r1[k]; rows[nr + k] = r1[k] + n1; }
+    for (long k = 0; k < LATTICE_C1; k++) nd1[k] = a1[k / 2] + (k % 2 ? n1 : 0);
+    for (long k = 0; k < LATTICE_C2; k++) nd2[k] += n1;
+}
+
 #endif

@@ -360,6 +360,64 @@ static void test_pruned_columns(void **state)
     free(Ti); free(Tj); free(Tv); free(Kd); free(Kinv);
 }
 
+/* Two bodies (L's forest of two trees): the pruned solves take the
+ * backward solve in the tree of a block's dofs alone, and a block of the
+ * bodies' alternating dofs is cut where the tree changes.  G and H against
+ * the dense inverse, as above (1e-10 of its largest entry); the entries
+ * between the bodies exactly zero, as in the dense inverse (a block's
+ * solve touches nothing of the other tree). */
+static void test_pruned_forest(void **state)
+{
+    (void)state;
+    enum { N2 = 2 * LD, NT = 80 * LN * LN * LN, NR = 6 * LN * LN, C1 = LATTICE_C1, C2 = LATTICE_C2, CT = C1 + C2 };
+    long *Ti = malloc(NT * sizeof(long)), *Tj = malloc(NT * sizeof(long)), bad = -1;
+    double *Tv = malloc(NT * sizeof(double)), *Kd = malloc(sizeof(double) * N2 * N2);
+    const long nt = test_lattice_pair(LN, TGV, Ti, Tj, Tv, Kd);
+    assert_true(nt <= NT);
+    long rows[NR], nd1[C1], nd2[C2], cd[CT];
+    test_lattice_pair_sets(LN, rows, nd1, nd2);
+    double *Kinv = calloc((size_t)N2 * CT, sizeof(double));
+    for (long k = 0; k < CT; k++) {
+        cd[k] = k < C1 ? nd1[k] : nd2[k - C1];
+        Kinv[cd[k] + k * N2] = 1.0;
+    }
+    int n = N2, nrhs = CT, info = 0;
+    dpotrf_("L", &n, Kd, &n, &info);
+    assert_int_equal(info, 0);
+    dpotrs_("L", &n, &nrhs, Kd, &n, Kinv, &n, &info);
+    assert_int_equal(info, 0);
+    double kmax = 0.0;
+    for (long k = 0; k < (long)N2 * CT; k++) kmax = fmax(kmax, fabs(Kinv[k]));
+    ffc__bulk *b = NULL;
+    assert_int_equal(ffc__bulk_create(N2, nt, Ti, Tj, Tv, 1000, &b, &bad), FFC_OK);
+    ffc__bulk_set_columns_mode(b, 1, 1);
+    assert_int_equal(ffc__bulk_columns(b, NR, rows, C1, nd1, &bad), FFC_OK);
+    assert_int_equal(ffc__bulk_columns(b, NR, rows, C2, nd2, &bad), FFC_OK);
+    const long *dof;
+    const double *G, *H;
+    long ld;
+    int super = -1;
+    double share = -1.0;
+    assert_int_equal(ffc__bulk_compliance(b, &dof, &G, &ld, &H, &super, &share), CT);
+    assert_true(super == 1 && share > 0.0 && share < 0.9);   /* pruned */
+    for (long j = 0; j < CT; j++) {
+        long cj = -1;
+        for (long k = 0; k < CT; k++)
+            if (cd[k] == dof[j]) cj = k;
+        assert_true(cj >= 0);
+        for (long i = 0; i < CT; i++) {
+            assert_close(G[i + j * ld], Kinv[dof[i] + cj * N2], 1e-10 * kmax);
+            if ((dof[i] < LD) != (dof[j] < LD)) assert_true(G[i + j * ld] == 0.0);
+        }
+        for (long r = 0; r < NR; r++) {
+            assert_close(H[r + j * NR], Kinv[rows[r] + cj * N2], 1e-10 * kmax);
+            if ((rows[r] < LD) != (dof[j] < LD)) assert_true(H[r + j * NR] == 0.0);
+        }
+    }
+    ffc__bulk_free(b);
+    free(Ti); free(Tj); free(Tv); free(Kd); free(Kinv);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -369,6 +427,7 @@ int main(void)
         cmocka_unit_test(test_columns_grow),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_pruned_columns),
+        cmocka_unit_test(test_pruned_forest),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -362,18 +362,21 @@ static void test_shared_lu(void **state)
  * makes its share of the subtrees of the supernodal tree, rank 0 the
  * supernodes above them with their BLAS threads.  Without Dirichlet rows
  * (tgv 0) K is singular: the factorization fails, and every rank returns
- * it, as one process does.  Tolerance: the same solves of factors whose
- * sums differ in order (CHOLMOD's and ffc_super.c's), 1e-14 of K^-1's
- * largest entry (K's condition below 1e3). */
-static void replicated_columns(double tgv)
+ * it, as one process does.  Two lattices (bodies = 2: L's forest has a
+ * tree for each) take shares of equal work, by the trees' backward
+ * solves.  Tolerance: the same solves of factors whose sums differ in
+ * order (CHOLMOD's and ffc_super.c's), 1e-14 of K^-1's largest entry (K's
+ * condition below 1e3). */
+static void replicated_columns(double tgv, int bodies)
 {
-    enum { LN = 6, LD = 3 * LN * LN * LN, NT = 40 * LN * LN * LN, C1 = LATTICE_C1, C2 = LATTICE_C2, CT = C1 + C2,
-           NR = 3 * LN * LN };
+    enum { LN = 6, NT = 80 * LN * LN * LN, C1 = LATTICE_C1, C2 = LATTICE_C2, CT = C1 + C2 };
+    const long LD = 3L * LN * LN * LN * bodies, NR = 3L * LN * LN * bodies;
     long *Li = malloc(NT * sizeof(long)), *Lj = malloc(NT * sizeof(long)), bad = -1;
     double *Lv = malloc(NT * sizeof(double));
-    const long nt = test_lattice(LN, tgv, Li, Lj, Lv, NULL);
-    long rows[NR], nd1[C1], nd2[C2];
-    test_lattice_sets(LN, rows, nd1, nd2);
+    const long nt = bodies == 2 ? test_lattice_pair(LN, tgv, Li, Lj, Lv, NULL) : test_lattice(LN, tgv, Li, Lj, Lv, NULL);
+    long rows[6 * LN * LN], nd1[C1], nd2[C2];
+    if (bodies == 2) test_lattice_pair_sets(LN, rows, nd1, nd2);
+    else test_lattice_sets(LN, rows, nd1, nd2);
     int fc, ranks;
     ffc_mpi_world(NULL, &ranks, &fc);
     ffc__bulk *b[2] = {NULL, NULL};
@@ -436,8 +439,9 @@ static void replicated_columns(double tgv)
 static void test_replicated_columns(void **state)
 {
     (void)state;
-    replicated_columns(1e30);
-    replicated_columns(0.0);
+    replicated_columns(1e30, 1);
+    replicated_columns(1e30, 2);
+    replicated_columns(0.0, 1);
 }
 
 static void test_bad_engine(void **state)
