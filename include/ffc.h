@@ -1240,7 +1240,10 @@ long ffc_nts_nodes(const ffc_pair *pair, long cap, ffc_nts_node out[], long *nee
  * clears frozen and mfprev (at the next load step).  A contact node the
  * search leaves without a partner keeps its facet when its foot lies past
  * the master's rim by no more than its distance |g| to the facet's plane
- * (a node held in a symmetry plane that cuts the master at its rim).  With init != 0 the
+ * (a node held in a symmetry plane that cuts the master at its rim).  A
+ * contact node whose foot lies on its facet to 1e-9 in local coordinates
+ * keeps it where the search gives another (a vertex or an edge the two
+ * share: which one is round-off, and their normals differ).  With init != 0 the
  * state is also set: contact (stick if law->nu_s > 0, else slide) when
  * g <= law->gtol, open otherwise. */
 int ffc_nts_locate(const ffc_pair *pair, const ffc_nts_law *law, const ffc_search_opts *o,

@@ -3,6 +3,8 @@
 #ifndef FFC_INTERNAL_H
 #define FFC_INTERNAL_H
 
+#include <math.h>
+
 /* A facet is degenerate when its area element is below this fraction of
  * its squared size (a sliver with angles below ~1e-10 rad). */
 #define FFC__DEGEN_REL 1e-12
@@ -18,6 +20,12 @@ static inline int ffc__cmp_long(const void *a, const void *b)
 {
     const long x = *(const long *)a, y = *(const long *)b;
     return (x > y) - (x < y);
+}
+
+/* how far the local coordinates xi lie outside the reference triangle (0 inside) */
+static inline double ffc__outside(const double xi[2])
+{
+    return fmax(0.0, fmax(-xi[0], fmax(-xi[1], xi[0] + xi[1] - 1.0)));
 }
 
 static inline double ffc__dot(const double a[3], const double b[3])

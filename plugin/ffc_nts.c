@@ -8,6 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* a contact node's foot outside its facet by at most this much in local
+ * coordinates is still on it (1: round-off of a foot on a vertex or an
+ * edge is about 1e-15 / h in them; a slide past an edge is far more) */
+#define NTS_KEEP 1e-9
+
 /* index of node v in the sorted nodes[nn] (-1 if absent) */
 static long find_node(long nn, const ffc_nts_node nodes[], long v)
 {
@@ -156,9 +161,31 @@ int ffc_nts_locate(const ffc_pair *pair, const ffc_nts_law *law, const ffc_searc
                 lk[k].gap = pr.gap;
                 for (int i = 0; i < 3; i++) lk[k].n[i] = pr.n[i];
             }
-        } else if (!init && d->state != FFC_NTS_OPEN && mfold >= 0 && lk[k].mf >= 0 && lk[k].mf != mfold) {
-            if (lk[k].mf == d->mfprev) d->frozen = 1;   /* back to the facet before: keep it */
-            d->mfprev = mfold;
+        } else if (!init && d->state != FFC_NTS_OPEN && mfold >= 0 && mfold < pair->nfm && lk[k].mf >= 0 &&
+                   lk[k].mf != mfold) {
+            /* a contact node whose foot is still on its facet, to round-off
+             * (NTS_KEEP), keeps it: at a vertex or an edge the facets share,
+             * which of them the search returns is round-off, and their
+             * normals (the constraint's direction) differ */
+            double Xm[3][3];
+            ffc_proj pr;
+            for (int a = 0; a < 3; a++)
+                for (int i = 0; i < 3; i++) Xm[a][i] = x[3 * pair->Fm[3 * mfold + a] + i];
+            if (ffc_project(3, (const double(*)[3])Xm, p + 3 * k, &pr) < 0) {
+                free(x);
+                free(lk);
+                return FFC_ERR_DEGENERATE;
+            }
+            if (ffc__outside(pr.xi_free) <= NTS_KEEP) {
+                lk[k].mf = mfold;
+                lk[k].xm[0] = pr.xi[0];
+                lk[k].xm[1] = pr.xi[1];
+                lk[k].gap = pr.gap;
+                for (int i = 0; i < 3; i++) lk[k].n[i] = pr.n[i];
+            } else {
+                if (lk[k].mf == d->mfprev) d->frozen = 1;   /* back to the facet before: keep it */
+                d->mfprev = mfold;
+            }
         }
         d->mf = lk[k].mf;
         d->gap = 0.0;

@@ -731,11 +731,6 @@ ffc_search_opts ffc_search_defaults(void)
 }
 
 /* local-coordinate distance of xi outside the reference triangle */
-static double outside(const double xi[2])
-{
-    return fmax(0.0, fmax(-xi[0], fmax(-xi[1], xi[0] + xi[1] - 1.0)));
-}
-
 /* Turns the closest candidate into a link (or none): feet clamped onto
  * the rim of the master surface are outside its footprint, and points
  * farther than the capture distance of their partner get no link. */
@@ -752,7 +747,7 @@ static void make_link(const ffc_tree *t, const cand_t *c, const double p[3],
     if (finish(t, c, p, &prv) < 0) return;
     const ffc_proj *pr = &prv;
     lk->where = pr->where;
-    if (pr->where != FFC_FOOT_INSIDE && outside(pr->xi_free) > o->edge_tol) {
+    if (pr->where != FFC_FOOT_INSIDE && ffc__outside(pr->xi_free) > o->edge_tol) {
         int rim = pr->where <= FFC_FOOT_EDGE2 ? t->nbr[c->f * 3 + pr->where - FFC_FOOT_EDGE0] < 0
                                               : t->vrim[c->f * 3 + pr->where - FFC_FOOT_VERTEX0];
         /* how far beyond the rim, in the facet's tangent plane: a penetrating

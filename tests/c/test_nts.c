@@ -521,6 +521,43 @@ static void test_valley_freeze(void **state)
     assert_int_equal(nd[0].frozen, 0);
 }
 
+/* a contact node on the edge two facets share (A: z = -0.1 x, x < 0, and
+ * B: z = 0.1 x, x > 0) keeps its facet while its foot stays on it to
+ * round-off: 1e-11 past the edge, where B is the closer facet, it stays on
+ * A (which facet the search gives there is round-off, and their normals
+ * differ); 1e-2 past it, it moves to B */
+static void test_edge_keep(void **state)
+{
+    (void)state;
+    double X[9 * 3] = {0, -2, 0, 0, 2, 0, -2, 0, 0.2, 0, 2, 0, 0, -2, 0, 2, 0, 0.2,
+                       0, 0, 0.05, 0, 0.5, 1, 0.5, 0, 1};
+    long Fm[6] = {0, 1, 2, 3, 4, 5}, Fs[3] = {6, 7, 8};
+    double u[27];
+    memset(u, 0, sizeof u);
+    ffc_pair p = {3, 1, Fs, 3, 2, Fm, 9, X, u, NULL, NULL};
+    ffc_nts_law law = {0, 0, 1e-12, 1e-9, 8, 1.0};
+    ffc_nts_node nd[3];
+    long need;
+    assert_int_equal(ffc_nts_nodes(&p, 3, nd, &need), 3);
+    double *u6 = u + 18;
+    u6[0] = -1e-11;            /* on A, at the edge, gap -1e-12 / sqrt(1.01) */
+    u6[2] = -0.05;
+    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, 3, nd), FFC_OK);
+    assert_int_equal(nd[0].state, FFC_NTS_SLIDE);
+    assert_int_equal(nd[0].mf, 0);
+    u6[0] = 1e-11;             /* past the edge: B's interior at distance 1e-12, A's edge at 1e-11 */
+    ffc_search_opts o = {1.0, 0.0, 0.0};   /* (edge_tol 0: the search itself keeps nothing) */
+    assert_int_equal(ffc_nts_locate(&p, &law, &o, 0, 3, nd), FFC_OK);
+    assert_int_equal(nd[0].mf, 0);
+    assert_int_equal(nd[0].mfprev, -1);
+    assert_int_equal(nd[0].frozen, 0);
+    assert_close(nd[0].gap, (0.1 * 1e-11) / sqrt(1.01), 1e-20);   /* to A's plane */
+    u6[0] = 1e-2;              /* on B */
+    assert_int_equal(ffc_nts_locate(&p, &law, &o, 0, 3, nd), FFC_OK);
+    assert_int_equal(nd[0].mf, 1);
+    assert_int_equal(nd[0].mfprev, 0);
+}
+
 /* a contact node held in a plane that cuts the master at its rim (a
  * symmetry plane): slightly above a tilted facet its foot lies past the
  * rim by less than its gap, and it keeps its facet; farther past the rim
@@ -675,6 +712,7 @@ int main(void)
         cmocka_unit_test(test_slide_rows_fd),
         cmocka_unit_test(test_valley_freeze),
         cmocka_unit_test(test_rim_keep),
+        cmocka_unit_test(test_edge_keep),
         cmocka_unit_test(test_fixed_tangent),
         cmocka_unit_test(test_frictionless),
         cmocka_unit_test(test_chattering_guard),
