@@ -136,14 +136,18 @@ int ffc_nts_locate(const ffc_pair *pair, const ffc_nts_law *law, const ffc_searc
             d->frozen = 0;
         }
         const long mfold = d->mf;
-        /* the node's facet kept: frozen, or a contact node the search left
+        /* the node's facet kept: frozen; or a contact node the search left
          * without a partner at the rim of the master, past it in the
          * tangent plane by no more than its distance |g| to the facet's
          * plane (a node held in a symmetry plane that cuts the master: a
          * tilted facet puts its foot up to |g| past the rim, on either
-         * side) */
+         * side); or a contact node given another facet whose foot is still
+         * on its own to round-off (NTS_KEEP: at a vertex or an edge the
+         * facets share, which of them the search returns is round-off, and
+         * their normals, the constraint's direction, differ) */
         const int rim = !init && d->state != FFC_NTS_OPEN && lk[k].mf < 0;
-        if ((d->frozen || rim) && mfold >= 0 && mfold < pair->nfm) {
+        const int moved = !init && d->state != FFC_NTS_OPEN && lk[k].mf >= 0 && lk[k].mf != mfold;
+        if ((d->frozen || rim || moved) && mfold >= 0 && mfold < pair->nfm) {
             double Xm[3][3];
             ffc_proj pr;
             for (int a = 0; a < 3; a++)
@@ -154,35 +158,14 @@ int ffc_nts_locate(const ffc_pair *pair, const ffc_nts_law *law, const ffc_searc
                 return FFC_ERR_DEGENERATE;
             }
             const double over2 = pr.dist * pr.dist - pr.gap * pr.gap;
-            if (d->frozen || !(over2 > 0) || sqrt(over2) <= fabs(pr.gap)) {
+            if (d->frozen || (rim && (!(over2 > 0) || sqrt(over2) <= fabs(pr.gap))) ||
+                (moved && ffc__outside(pr.xi_free) <= NTS_KEEP)) {
                 lk[k].mf = mfold;
                 lk[k].xm[0] = pr.xi[0];
                 lk[k].xm[1] = pr.xi[1];
                 lk[k].gap = pr.gap;
                 for (int i = 0; i < 3; i++) lk[k].n[i] = pr.n[i];
-            }
-        } else if (!init && d->state != FFC_NTS_OPEN && mfold >= 0 && mfold < pair->nfm && lk[k].mf >= 0 &&
-                   lk[k].mf != mfold) {
-            /* a contact node whose foot is still on its facet, to round-off
-             * (NTS_KEEP), keeps it: at a vertex or an edge the facets share,
-             * which of them the search returns is round-off, and their
-             * normals (the constraint's direction) differ */
-            double Xm[3][3];
-            ffc_proj pr;
-            for (int a = 0; a < 3; a++)
-                for (int i = 0; i < 3; i++) Xm[a][i] = x[3 * pair->Fm[3 * mfold + a] + i];
-            if (ffc_project(3, (const double(*)[3])Xm, p + 3 * k, &pr) < 0) {
-                free(x);
-                free(lk);
-                return FFC_ERR_DEGENERATE;
-            }
-            if (ffc__outside(pr.xi_free) <= NTS_KEEP) {
-                lk[k].mf = mfold;
-                lk[k].xm[0] = pr.xi[0];
-                lk[k].xm[1] = pr.xi[1];
-                lk[k].gap = pr.gap;
-                for (int i = 0; i < 3; i++) lk[k].n[i] = pr.n[i];
-            } else {
+            } else if (moved) {
                 if (lk[k].mf == d->mfprev) d->frozen = 1;   /* back to the facet before: keep it */
                 d->mfprev = mfold;
             }

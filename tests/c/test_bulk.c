@@ -281,6 +281,43 @@ static void test_no_mpi(void **state)
 #define LN 6
 #define LD (3 * LN * LN * LN)
 
+/* a bulk's compliance (ffc__bulk_compliance's outputs) */
+typedef struct {
+    const long *dof;     /* [m] C's dofs */
+    const double *G, *H; /* G (ld x m), H (nr x m) */
+    long ld;
+    int super;           /* 1: L supernodal */
+    double share;        /* the share of L the last pruned backward solves visited */
+} compliance;
+
+static long compliance_of(ffc__bulk *b, compliance *c)
+{
+    c->super = -1;
+    c->share = -1.0;
+    return ffc__bulk_compliance(b, &c->dof, &c->G, &c->ld, &c->H, &c->super, &c->share);
+}
+
+/* The dense reference: the columns of K^-1 (K = Kd[n * n], factorized in
+ * place) at C's dofs cd = nd1 then nd2 into Kinv[n * CT] (zero on entry);
+ * returns their largest entry */
+static double inverse_columns(int n, double Kd[], const long nd1[LATTICE_C1], const long nd2[LATTICE_C2],
+                              long cd[LATTICE_C1 + LATTICE_C2], double Kinv[])
+{
+    enum { C1 = LATTICE_C1, CT = LATTICE_C1 + LATTICE_C2 };
+    for (long k = 0; k < CT; k++) {
+        cd[k] = k < C1 ? nd1[k] : nd2[k - C1];
+        Kinv[cd[k] + k * n] = 1.0;
+    }
+    int nrhs = CT, info = 0;
+    dpotrf_("L", &n, Kd, &n, &info);
+    assert_int_equal(info, 0);
+    dpotrs_("L", &n, &nrhs, Kd, &n, Kinv, &n, &info);
+    assert_int_equal(info, 0);
+    double kmax = 0.0;
+    for (long k = 0; k < (long)n * CT; k++) kmax = fmax(kmax, fabs(Kinv[k]));
+    return kmax;
+}
+
 /* The compliance columns G (C x C) and H (R x C) against K^-1 from a dense
  * Cholesky of the lattice's K, with a supernodal factor and pruned solves,
  * the same factor and whole back-solves, and the factor CHOLMOD chooses;
@@ -305,17 +342,7 @@ static void test_pruned_columns(void **state)
     /* the dense reference: columns of K^-1 at C's dofs */
     double *Kinv = calloc((size_t)LD * CT, sizeof(double));
     long cd[CT];
-    for (long k = 0; k < CT; k++) {
-        cd[k] = k < C1 ? nd1[k] : nd2[k - C1];
-        Kinv[cd[k] + k * LD] = 1.0;
-    }
-    int n = LD, nrhs = CT, info = 0;
-    dpotrf_("L", &n, Kd, &n, &info);
-    assert_int_equal(info, 0);
-    dpotrs_("L", &n, &nrhs, Kd, &n, Kinv, &n, &info);
-    assert_int_equal(info, 0);
-    double kmax = 0.0;
-    for (long k = 0; k < (long)LD * CT; k++) kmax = fmax(kmax, fabs(Kinv[k]));
+    const double kmax = inverse_columns(LD, Kd, nd1, nd2, cd, Kinv);
     /* modes: pruned, whole supernodal, simplicial; and pruned with C grown
      * 7 dofs a call (G re-laid out as its leading dimension grows with
      * columns already in it) */
@@ -333,27 +360,23 @@ static void test_pruned_columns(void **state)
             for (long k = 0; k < C2; k += 7)
                 assert_int_equal(ffc__bulk_columns(b, 3 * LN * LN, rows, k + 7 < C2 ? 7 : C2 - k, nd2 + k, &bad), FFC_OK);
         }
-        const long *dof;
-        const double *G, *H;
-        long ld;
-        int super = -1;
-        double share = -1.0;
-        assert_int_equal(ffc__bulk_compliance(b, &dof, &G, &ld, &H, &super, &share), CT);
-        if (md != 2) assert_int_equal(super, 1);
-        if (md == 0) assert_true(share > 0.0 && share < 0.9);   /* the premise: the solves were pruned */
-        if (md == 3) assert_true(ld >= CT && ld % 64 == 0 && ld < 2 * CT);   /* grown in steps, not doubled past */
-        if (md == 1) assert_true(share == 0.0);
+        compliance c;
+        assert_int_equal(compliance_of(b, &c), CT);
+        if (md != 2) assert_int_equal(c.super, 1);
+        if (md == 0) assert_true(c.share > 0.0 && c.share < 0.9);   /* the premise: the solves were pruned */
+        if (md == 3) assert_true(c.ld >= CT && c.ld % 64 == 0 && c.ld < 2 * CT);   /* grown in steps, not doubled past */
+        if (md == 1) assert_true(c.share == 0.0);
         long col[CT];   /* C's order is the solves' (L's order with pruning): the reference column of each */
         for (long j = 0; j < CT; j++) {
             col[j] = -1;
             for (long k = 0; k < CT; k++)
-                if (cd[k] == dof[j]) col[j] = k;
-            assert_true(col[j] >= 0 && (j < C1) == (col[j] < C1));   /* each dof once, the first call's first */
+                if (cd[k] == c.dof[j]) col[j] = k;
+            assert_true(col[j] >= 0 && (j < C1) == (col[j] < C1));   /* each c.dof once, the first call's first */
         }
         for (long j = 0; j < CT; j++) {
-            for (long i = 0; i < CT; i++) assert_close(G[i + j * ld], Kinv[dof[i] + col[j] * LD], 1e-10 * kmax);
+            for (long i = 0; i < CT; i++) assert_close(c.G[i + j * c.ld], Kinv[c.dof[i] + col[j] * LD], 1e-10 * kmax);
             for (long r = 0; r < 3 * LN * LN; r++)
-                assert_close(H[r + j * 3 * LN * LN], Kinv[rows[r] + col[j] * LD], 1e-10 * kmax);
+                assert_close(c.H[r + j * 3 * LN * LN], Kinv[rows[r] + col[j] * LD], 1e-10 * kmax);
         }
         ffc__bulk_free(b);
     }
@@ -377,41 +400,27 @@ static void test_pruned_forest(void **state)
     long rows[NR], nd1[C1], nd2[C2], cd[CT];
     test_lattice_pair_sets(LN, rows, nd1, nd2);
     double *Kinv = calloc((size_t)N2 * CT, sizeof(double));
-    for (long k = 0; k < CT; k++) {
-        cd[k] = k < C1 ? nd1[k] : nd2[k - C1];
-        Kinv[cd[k] + k * N2] = 1.0;
-    }
-    int n = N2, nrhs = CT, info = 0;
-    dpotrf_("L", &n, Kd, &n, &info);
-    assert_int_equal(info, 0);
-    dpotrs_("L", &n, &nrhs, Kd, &n, Kinv, &n, &info);
-    assert_int_equal(info, 0);
-    double kmax = 0.0;
-    for (long k = 0; k < (long)N2 * CT; k++) kmax = fmax(kmax, fabs(Kinv[k]));
+    const double kmax = inverse_columns(N2, Kd, nd1, nd2, cd, Kinv);
     ffc__bulk *b = NULL;
     assert_int_equal(ffc__bulk_create(N2, nt, Ti, Tj, Tv, 1000, &b, &bad), FFC_OK);
     ffc__bulk_set_columns_mode(b, 1, 1);
     assert_int_equal(ffc__bulk_columns(b, NR, rows, C1, nd1, &bad), FFC_OK);
     assert_int_equal(ffc__bulk_columns(b, NR, rows, C2, nd2, &bad), FFC_OK);
-    const long *dof;
-    const double *G, *H;
-    long ld;
-    int super = -1;
-    double share = -1.0;
-    assert_int_equal(ffc__bulk_compliance(b, &dof, &G, &ld, &H, &super, &share), CT);
-    assert_true(super == 1 && share > 0.0 && share < 0.9);   /* pruned */
+    compliance c;
+    assert_int_equal(compliance_of(b, &c), CT);
+    assert_true(c.super == 1 && c.share > 0.0 && c.share < 0.9);   /* pruned */
     for (long j = 0; j < CT; j++) {
         long cj = -1;
         for (long k = 0; k < CT; k++)
-            if (cd[k] == dof[j]) cj = k;
+            if (cd[k] == c.dof[j]) cj = k;
         assert_true(cj >= 0);
         for (long i = 0; i < CT; i++) {
-            assert_close(G[i + j * ld], Kinv[dof[i] + cj * N2], 1e-10 * kmax);
-            if ((dof[i] < LD) != (dof[j] < LD)) assert_true(G[i + j * ld] == 0.0);
+            assert_close(c.G[i + j * c.ld], Kinv[c.dof[i] + cj * N2], 1e-10 * kmax);
+            if ((c.dof[i] < LD) != (c.dof[j] < LD)) assert_true(c.G[i + j * c.ld] == 0.0);
         }
         for (long r = 0; r < NR; r++) {
-            assert_close(H[r + j * NR], Kinv[rows[r] + cj * N2], 1e-10 * kmax);
-            if ((rows[r] < LD) != (dof[j] < LD)) assert_true(H[r + j * NR] == 0.0);
+            assert_close(c.H[r + j * NR], Kinv[rows[r] + cj * N2], 1e-10 * kmax);
+            if ((rows[r] < LD) != (c.dof[j] < LD)) assert_true(c.H[r + j * NR] == 0.0);
         }
     }
     ffc__bulk_free(b);

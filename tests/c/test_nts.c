@@ -483,30 +483,51 @@ static void test_fixed_tangent(void **state)
     assert_close(res, law.scale * phi, 1e-13);
 }
 
+/* Two master facets meeting at the edge x = 0 (A: z = -0.1 x, x < 0, and
+ * B: z = 0.1 x, x > 0) and a slave facet whose node 6 (at (0, 0, 0.05),
+ * moved by u[18..20]) is the test's contact node */
+typedef struct {
+    double X[9 * 3], u[27];
+    long Fm[6], Fs[3];
+    ffc_pair p;
+    ffc_nts_law law;
+    ffc_nts_node nd[3];
+} valley;
+
+static void valley_init(valley *v)
+{
+    const double X[9 * 3] = {0, -2, 0, 0, 2, 0, -2, 0, 0.2, 0, 2, 0, 0, -2, 0, 2, 0, 0.2,
+                             0, 0, 0.05, 0, 0.5, 1, 0.5, 0, 1};
+    const long Fm[6] = {0, 1, 2, 3, 4, 5}, Fs[3] = {6, 7, 8};
+    memcpy(v->X, X, sizeof X);
+    memcpy(v->Fm, Fm, sizeof Fm);
+    memcpy(v->Fs, Fs, sizeof Fs);
+    memset(v->u, 0, sizeof v->u);
+    const ffc_pair p = {3, 1, v->Fs, 3, 2, v->Fm, 9, v->X, v->u, NULL, NULL};
+    const ffc_nts_law law = {0, 0, 1e-12, 1e-9, 8, 1.0};
+    v->p = p;
+    v->law = law;
+    long need;
+    assert_int_equal(ffc_nts_nodes(&v->p, 3, v->nd, &need), 3);
+}
+
 /* a node in a valley of the master (facets A: z = -0.1 x, x < 0, and B:
  * z = 0.1 x, x > 0) whose facet goes A -> B -> A keeps A: its gap is then
  * the distance to A's plane even where B is closer */
 static void test_valley_freeze(void **state)
 {
     (void)state;
-    double X[9 * 3] = {0, -2, 0, 0, 2, 0, -2, 0, 0.2, 0, 2, 0, 0, -2, 0, 2, 0, 0.2,
-                       0, 0, 0.05, 0, 0.5, 1, 0.5, 0, 1};
-    long Fm[6] = {0, 1, 2, 3, 4, 5}, Fs[3] = {6, 7, 8};
-    double u[27];
-    memset(u, 0, sizeof u);
-    ffc_pair p = {3, 1, Fs, 3, 2, Fm, 9, X, u, NULL, NULL};
-    ffc_nts_law law = {0, 0, 1e-12, 1e-9, 8, 1.0};
-    ffc_nts_node nd[3];
-    long need;
-    assert_int_equal(ffc_nts_nodes(&p, 3, nd, &need), 3);
-    double *u6 = u + 18;
+    valley v;
+    valley_init(&v);
+    double *u6 = v.u + 18;
+    ffc_nts_node *nd = v.nd;
     const double side[4] = {-0.3, 0.3, -0.3, 0.3};
     const long facet[4] = {0, 1, 0, 0}, before[4] = {-1, 0, 1, 1};
     const int frozen[4] = {0, 0, 1, 1};
     for (int k = 0; k < 4; k++) {
         u6[0] = side[k];
         u6[2] = -0.1;
-        assert_int_equal(ffc_nts_locate(&p, &law, NULL, k == 0, 3, nd), FFC_OK);
+        assert_int_equal(ffc_nts_locate(&v.p, &v.law, NULL, k == 0, 3, nd), FFC_OK);
         if (k == 0) assert_int_equal(nd[0].state, FFC_NTS_SLIDE);
         assert_int_equal(nd[0].mf, facet[k]);
         assert_int_equal(nd[0].mfprev, before[k]);
@@ -516,7 +537,7 @@ static void test_valley_freeze(void **state)
     assert_close(nd[0].gap, (0.1 * 0.3 - 0.05) / sqrt(1.01), 1e-14);
     assert_close(nd[0].L[0] + nd[0].L[1] + nd[0].L[2], 1, 1e-14);
     /* a new step (init) searches again */
-    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, 3, nd), FFC_OK);
+    assert_int_equal(ffc_nts_locate(&v.p, &v.law, NULL, 1, 3, nd), FFC_OK);
     assert_int_equal(nd[0].mf, 1);
     assert_int_equal(nd[0].frozen, 0);
 }
@@ -529,31 +550,24 @@ static void test_valley_freeze(void **state)
 static void test_edge_keep(void **state)
 {
     (void)state;
-    double X[9 * 3] = {0, -2, 0, 0, 2, 0, -2, 0, 0.2, 0, 2, 0, 0, -2, 0, 2, 0, 0.2,
-                       0, 0, 0.05, 0, 0.5, 1, 0.5, 0, 1};
-    long Fm[6] = {0, 1, 2, 3, 4, 5}, Fs[3] = {6, 7, 8};
-    double u[27];
-    memset(u, 0, sizeof u);
-    ffc_pair p = {3, 1, Fs, 3, 2, Fm, 9, X, u, NULL, NULL};
-    ffc_nts_law law = {0, 0, 1e-12, 1e-9, 8, 1.0};
-    ffc_nts_node nd[3];
-    long need;
-    assert_int_equal(ffc_nts_nodes(&p, 3, nd, &need), 3);
-    double *u6 = u + 18;
+    valley v;
+    valley_init(&v);
+    double *u6 = v.u + 18;
+    ffc_nts_node *nd = v.nd;
     u6[0] = -1e-11;            /* on A, at the edge, gap -1e-12 / sqrt(1.01) */
     u6[2] = -0.05;
-    assert_int_equal(ffc_nts_locate(&p, &law, NULL, 1, 3, nd), FFC_OK);
+    assert_int_equal(ffc_nts_locate(&v.p, &v.law, NULL, 1, 3, nd), FFC_OK);
     assert_int_equal(nd[0].state, FFC_NTS_SLIDE);
     assert_int_equal(nd[0].mf, 0);
     u6[0] = 1e-11;             /* past the edge: B's interior at distance 1e-12, A's edge at 1e-11 */
     ffc_search_opts o = {1.0, 0.0, 0.0};   /* (edge_tol 0: the search itself keeps nothing) */
-    assert_int_equal(ffc_nts_locate(&p, &law, &o, 0, 3, nd), FFC_OK);
+    assert_int_equal(ffc_nts_locate(&v.p, &v.law, &o, 0, 3, nd), FFC_OK);
     assert_int_equal(nd[0].mf, 0);
     assert_int_equal(nd[0].mfprev, -1);
     assert_int_equal(nd[0].frozen, 0);
     assert_close(nd[0].gap, (0.1 * 1e-11) / sqrt(1.01), 1e-20);   /* to A's plane */
     u6[0] = 1e-2;              /* on B */
-    assert_int_equal(ffc_nts_locate(&p, &law, &o, 0, 3, nd), FFC_OK);
+    assert_int_equal(ffc_nts_locate(&v.p, &v.law, &o, 0, 3, nd), FFC_OK);
     assert_int_equal(nd[0].mf, 1);
     assert_int_equal(nd[0].mfprev, 0);
 }
