@@ -120,6 +120,7 @@ struct ffc__bulk {
     int *sroot;                /* [nsuper] the root of each supernode's tree (the forest has one tree per
                                   part of K that nothing couples: each body, before contact) */
     unsigned char *smark;      /* [nsuper] work: 1 on the supernodes a solve visits */
+    unsigned char *tmark;      /* [nsuper] work: 1 on the roots of the trees a block of columns lies in */
     double *sw;                /* [swcap] work: a supernode's rows below its diagonal block x BLOCK */
     double pshare;             /* the share of L's entries the last pruned backward solves visited */
     long swcap;
@@ -146,9 +147,9 @@ static int agree(const ffc__bulk *b, int st)
 /* drops the pruned solves' tree and work (made again with the next factor) */
 static void prune_free(ffc__bulk *b)
 {
-    free(b->ipm); free(b->sn); free(b->spar); free(b->sroot); free(b->smark); free(b->sw);
+    free(b->ipm); free(b->sn); free(b->spar); free(b->sroot); free(b->smark); free(b->tmark); free(b->sw);
     b->ipm = b->sn = b->spar = b->sroot = NULL;
-    b->smark = NULL;
+    b->smark = b->tmark = NULL;
     b->sw = NULL;
     b->swcap = 0;
 }
@@ -628,6 +629,7 @@ static int prune_tree(ffc__bulk *b)
     b->spar = malloc((size_t)ns * sizeof(int));
     b->sroot = malloc((size_t)ns * sizeof(int));
     b->smark = calloc((size_t)ns, 1);
+    b->tmark = calloc((size_t)ns, 1);
     long wrow = 0;
     for (long k = 0; k < ns; k++) {
         const long below = (pi[k + 1] - pi[k]) - (super[k + 1] - super[k]);
@@ -635,7 +637,7 @@ static int prune_tree(ffc__bulk *b)
     }
     b->swcap = (wrow > 0 ? wrow : 1) * BLOCK;
     b->sw = malloc((size_t)b->swcap * sizeof(double));
-    if (!b->ipm || !b->sn || !b->spar || !b->sroot || !b->smark || !b->sw) {
+    if (!b->ipm || !b->sn || !b->spar || !b->sroot || !b->smark || !b->tmark || !b->sw) {
         prune_free(b);
         return FFC_ERR_MEMORY;
     }
@@ -676,8 +678,10 @@ static int prune_root(const ffc__bulk *b, long i)
  * entries, against 100 % twice.  Where K has parts that nothing couples
  * (the bodies of a scene: L's forest has a tree for each), z and x are
  * zero outside the trees of the block's dofs, so the backward solve takes
- * bw in the block's tree alone (the caller makes blocks of one tree):
- * on Hertz's two bodies that halves it.  X (n x BLOCK, in L's order) is
+ * bw in those trees alone (a block, in the factor's order, holds one
+ * body's columns but where the bodies change): on Hertz's two bodies that
+ * halves it, and the values are those of the whole bw (what it skips adds
+ * zeros).  X (n x BLOCK, in L's order) is
  * zero on entry; the block's dofs are among the rows, so Fw lies in bw,
  * and the rows the backward solve visited are cleared at the end.  The
  * values on rows[nrows] go to V (nrows x nb). */
@@ -690,8 +694,12 @@ static void pruned_block(ffc__bulk *b, long nbl, const long d[], const unsigned 
     const double *lx = L->x, one = 1.0, zero = 0.0, mone = -1.0;
     const int ldx = (int)n, nb = (int)nbl;
     double *X = b->Bb->x, *W = b->sw;
-    const int *sroot = b->sroot, tree = prune_root(b, d[0]);
-    for (long k = 0; k < nbl; k++) X[b->ipm[d[k]] + k * n] = 1.0;
+    const int *sroot = b->sroot;
+    unsigned char *tmark = b->tmark;
+    for (long k = 0; k < nbl; k++) {
+        X[b->ipm[d[k]] + k * n] = 1.0;
+        tmark[prune_root(b, d[k])] = 1;
+    }
     prune_mark(b, nbl, d);   /* Fw */
     for (long s = 0; s < ns; s++) {   /* forward, children before parents */
         if (!b->smark[s]) continue;
@@ -706,7 +714,7 @@ static void pruned_block(ffc__bulk *b, long nbl, const long d[], const unsigned 
             for (int r = 0; r < below; r++) X[ri[r] + c * n] -= W[r + c * below];
     }
     for (long s = ns - 1; s >= 0; s--) {   /* backward, parents before children */
-        if (!bw[s] || sroot[s] != tree) continue;
+        if (!bw[s] || !tmark[sroot[s]]) continue;
         const int k1 = super[s], ncol = super[s + 1] - k1, nrow = pi[s + 1] - pi[s], below = nrow - ncol;
         const double *Ls = lx + px[s];
         if (below > 0) {
@@ -720,9 +728,10 @@ static void pruned_block(ffc__bulk *b, long nbl, const long d[], const unsigned 
     for (long k = 0; k < nbl; k++)
         for (long r = 0; r < nrows; r++) V[r + k * nrows] = X[b->ipm[rows[r]] + k * n];
     for (long s = 0; s < ns; s++)
-        if (bw[s] && sroot[s] == tree)
+        if (bw[s] && tmark[sroot[s]])
             for (long c = 0; c < nbl; c++)
                 memset(X + super[s] + c * n, 0, (size_t)(super[s + 1] - super[s]) * sizeof(double));
+    for (long k = 0; k < nbl; k++) tmark[prune_root(b, d[k])] = 0;
 }
 
 /* the same by whole back-solves (a simplicial factor, or pruning off) */
@@ -742,16 +751,12 @@ static int whole_block(ffc__bulk *b, long nbl, const long d[], long nrows, const
 }
 
 /* the columns of K'^-1 at the dofs d[nc] on rows[nrows] into V (nrows x
- * nc), BLOCK at a time (bw: the rows' paths when pruned, else NULL; then
- * a block ends where the dofs' tree of L changes too) */
+ * nc), BLOCK at a time (bw: the rows' paths when pruned, else NULL) */
 static int columns_on_rows(ffc__bulk *b, long nc, const long d[], const unsigned char *bw, long nrows,
                            const long rows[], double V[])
 {
-    for (long k0 = 0, nbl; k0 < nc; k0 += nbl) {
-        nbl = nc - k0 < BLOCK ? nc - k0 : BLOCK;
-        if (bw)
-            for (long k = 1; k < nbl; k++)
-                if (prune_root(b, d[k0 + k]) != prune_root(b, d[k0])) { nbl = k; break; }
+    for (long k0 = 0; k0 < nc; k0 += BLOCK) {
+        const long nbl = nc - k0 < BLOCK ? nc - k0 : BLOCK;
         if (bw) pruned_block(b, nbl, d + k0, bw, nrows, rows, V + k0 * nrows);
         else {
             const int st = whole_block(b, nbl, d + k0, nrows, rows, V + k0 * nrows);

@@ -384,8 +384,8 @@ static void test_pruned_columns(void **state)
 }
 
 /* Two bodies (L's forest of two trees): the pruned solves take the
- * backward solve in the tree of a block's dofs alone, and a block of the
- * bodies' alternating dofs is cut where the tree changes.  G and H against
+ * backward solve in the trees of a block's dofs alone (a block of the
+ * bodies' alternating dofs: both).  G and H against
  * the dense inverse, as above (1e-10 of its largest entry); the entries
  * between the bodies exactly zero, as in the dense inverse (a block's
  * solve touches nothing of the other tree). */
