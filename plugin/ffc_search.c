@@ -730,7 +730,6 @@ ffc_search_opts ffc_search_defaults(void)
     return o;
 }
 
-/* local-coordinate distance of xi outside the reference triangle */
 /* Turns the closest candidate into a link (or none): feet clamped onto
  * the rim of the master surface are outside its footprint, and points
  * farther than the capture distance of their partner get no link. */

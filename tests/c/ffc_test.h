@@ -225,7 +225,6 @@ static inline void test_lattice_sets(int ln, long rows[], long nd1[LATTICE_C1], 
     for (long k = 0; k < 9; k++) nd2[LATTICE_C2 - 9 + k] = 3L * ln * ln * 2 + 5 * k + 2;
 }
 
-
 /* Two such lattices that nothing couples (two bodies before contact: K
  * block diagonal, L's supernodal forest of two trees), the second's dofs
  * after the first's: n = 6 ln^3.  Triplets (at most 80 ln^3) and, unless
