@@ -105,7 +105,7 @@ $(B)/meshes/%.msh: meshes/%.geo
 $(B)/bench_search: tests/bench/bench_search.c $(B)/libffc.a
 	$(CC) $(CFLAGS) $< $(B)/libffc.a $(CLIBS) -o $@
 
-.PHONY: bench bench-search bench-contact bench-mpi
+.PHONY: bench bench-search bench-contact bench-mpi bench-scene
 bench-search: $(B)/bench_search
 	@sh tests/bench/bench_search.sh
 bench-contact: all
@@ -115,7 +115,10 @@ bench-mpi: all $(B)/bench_pair
 	@sh tests/bench/bench_mpi.sh $(or $(MODE),quick) $(or $(NP),2)
 $(B)/bench_pair: tests/bench/bench_pair.c
 	$(CC) -O2 -std=c11 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Werror $< -lblas -o $@
-bench: bench-search bench-contact bench-mpi
+# README's own scene and variants (MODE=quick: without the finer mesh)
+bench-scene: all
+	@sh tests/bench/bench_scene.sh $(MODE)
+bench: bench-search bench-contact bench-mpi bench-scene
 
 # sanitizers and fuzzing (clang from Debian)
 ASAN := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
