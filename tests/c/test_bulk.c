@@ -371,7 +371,7 @@ static void test_pruned_columns(void **state)
             col[j] = -1;
             for (long k = 0; k < CT; k++)
                 if (cd[k] == c.dof[j]) col[j] = k;
-            assert_true(col[j] >= 0 && (j < C1) == (col[j] < C1));   /* each c.dof once, the first call's first */
+            assert_true(col[j] >= 0 && (j < C1) == (col[j] < C1));   /* each dof once, the first call's first */
         }
         for (long j = 0; j < CT; j++) {
             for (long i = 0; i < CT; i++) assert_close(c.G[i + j * c.ld], Kinv[c.dof[i] + col[j] * LD], 1e-10 * kmax);
