@@ -924,6 +924,7 @@ typedef struct {
                             of the same support (count) */
     long m;              /* contact dofs in the compliance (count) */
     double shift;        /* s (force/length; 0: no shift) */
+    long shifted;        /* dofs that carry the shift (count; 0: none) */
     double rcond;        /* CHOLMOD's estimate of the factor's reciprocal condition (1; 0 with MUMPS,
                             which refuses negative pivots and those below 1e-12 of K's norm instead) */
     int ranks;           /* the ranks that share the factorization (1: CHOLMOD) */
@@ -1071,9 +1072,13 @@ int ffc_scene_solve_info(const ffc_scene *s, ffc_solve_info *info);
  * follow u: v = v0 + dvdu (u + d - u).  Per call: two back-solves, one
  * contact evaluation per iteration and line-search point, a column per
  * dof that joins C, the Cholesky factor of G extended when C grew.  A
- * singular K is shifted on the nodes the contact force reaches at u (or,
- * without force, on the linked points' facets); the shifted dofs belong
- * to C. */
+ * singular K (a body that only contact holds) is shifted on three nodes
+ * far apart (by K's graph) in each body that the linked points' facets or
+ * the contact force at u touch: no rigid motion of such a body leaves
+ * them all at rest, and each shifted dof adds one term to the dense
+ * systems (ffc_solve_info.shifted counts them); should K + S still be
+ * singular, on the nodes the force reaches, then on the linked points'
+ * facets.  The shifted dofs belong to C. */
 enum { FFC_NEWTON_HIST = 64 };
 typedef struct {
     int max_iter;      /* Newton iterations at most (>= 1) */

@@ -583,6 +583,7 @@ static int factorize_timed(ffc__bulk *b, long nnew, const long nd[])
     b->factored = 1;
     b->info.factorizations++;
     b->info.shift = nnew ? b->kfree : 0.0;
+    b->info.shifted = nnew;
     return FFC_OK;
 }
 
@@ -603,10 +604,85 @@ static int factorize(ffc__bulk *b, long nnew, const long nd[])
     return st;
 }
 
+/* BFS over the node graph (xadj, adj) from s: dist[] (-1 where not yet
+ * reached) set on s's part; the nodes in the order reached into q, their
+ * count returned (the last one is a farthest from s) */
+static long node_bfs(const int xadj[], const int adj[], long s, int dist[], int q[])
+{
+    long h = 0, t = 0;
+    dist[s] = 0;
+    q[t++] = (int)s;
+    while (h < t) {
+        const int v = q[h++];
+        for (int e = xadj[v]; e < xadj[v + 1]; e++)
+            if (dist[adj[e]] < 0) { dist[adj[e]] = dist[v] + 1; q[t++] = adj[e]; }
+    }
+    return t;
+}
+
+/* The shift of a singular K on few dofs: in each part of K's graph (a
+ * body) that holds one of the dofs seed[nseed], the free dofs of three
+ * nodes far apart (a, the farthest from a seed; b, the farthest from a;
+ * c, the one farthest from both), into b->nd[*nset].  A rigid motion that
+ * is zero at three points not on one line is zero, so K + S is regular
+ * on every body the contact touches (each shifted dof joins C and adds
+ * one term to the condensed Newton's dense systems; a shift on the
+ * contact dofs themselves put every linked point's dofs there: a
+ * cylinder pressed onto a block by a load, 1,621 contact dofs and dense
+ * systems of 1,657).  Nodes are dofs / 3 (node-major dofs); distances
+ * count the graph's edges. */
+static int spread_dofs(ffc__bulk *b, long nseed, const long seed[], long *nset)
+{
+    const long n = b->n, nn = (n + 2) / 3;
+    *nset = 0;
+    if (nn > 2147483647L / 4) return FFC_ERR_SIZE;
+    int *xadj = calloc((size_t)nn + 1, sizeof(int)), *lab = malloc((size_t)nn * 4 * sizeof(int));
+    long ne = 0;
+    for (long t = 0; t < b->nt; t++)
+        ne += !b->big[b->Ti[t]] && !b->big[b->Tj[t]] && b->Ti[t] / 3 != b->Tj[t] / 3;
+    int *adj = ne < 2147483647L ? malloc((size_t)(ne + 1) * sizeof(int)) : NULL;
+    long *sd = malloc((size_t)(nseed + 1) * sizeof(long));
+    if (!xadj || !lab || !adj || !sd) { free(xadj); free(lab); free(adj); free(sd); return FFC_ERR_MEMORY; }
+    memcpy(sd, seed, (size_t)nseed * sizeof(long));   /* (seed may be b->nd) */
+    for (long t = 0; t < b->nt; t++)
+        if (!b->big[b->Ti[t]] && !b->big[b->Tj[t]] && b->Ti[t] / 3 != b->Tj[t] / 3) xadj[b->Ti[t] / 3 + 1]++;
+    for (long v = 0; v < nn; v++) xadj[v + 1] += xadj[v];
+    int *fill = lab + nn;   /* (the fill pointers, then da) */
+    memcpy(fill, xadj, (size_t)nn * sizeof(int));
+    for (long t = 0; t < b->nt; t++)
+        if (!b->big[b->Ti[t]] && !b->big[b->Tj[t]] && b->Ti[t] / 3 != b->Tj[t] / 3)
+            adj[fill[b->Ti[t] / 3]++] = (int)(b->Tj[t] / 3);
+    int *da = lab + nn, *db = lab + 2 * nn, *q = lab + 3 * nn;
+    for (long v = 0; v < 3 * nn; v++) lab[v] = -1;
+    long c = 0;
+    for (long k = 0; k < nseed; k++) {
+        if (sd[k] < 0 || sd[k] >= n || b->big[sd[k]] || lab[sd[k] / 3] >= 0) continue;
+        long cnt = node_bfs(xadj, adj, sd[k] / 3, lab, q);
+        const long a = q[cnt - 1];
+        cnt = node_bfs(xadj, adj, a, da, q);
+        const long bb = q[cnt - 1];
+        node_bfs(xadj, adj, bb, db, q);
+        long cc = a;
+        for (long i = 0, best = -1; i < cnt; i++) {
+            const int v = q[i], d = da[v] < db[v] ? da[v] : db[v];
+            if (d > best) { best = d; cc = v; }
+        }
+        const long pick[3] = {a, bb, cc};
+        for (int p = 0; p < 3; p++) {
+            if ((p == 1 && pick[1] == pick[0]) || (p == 2 && (pick[2] == pick[0] || pick[2] == pick[1]))) continue;
+            for (long d = 3 * pick[p]; d < 3 * pick[p] + 3 && d < n; d++)
+                if (!b->big[d]) b->nd[c++] = d;
+        }
+    }
+    free(xadj); free(lab); free(adj); free(sd);
+    *nset = c;
+    return FFC_OK;
+}
+
 /* The first factorization: K alone; when K is singular (a body that only
  * contact holds), K + S with the shift on the contact dofs nd[nnew] of the
- * first solve.  An unshifted K keeps the contact tangent's support small
- * (the condensed Newton's dense systems are over that support). */
+ * first solve (in C anyway: the dense systems of these solves are over all
+ * of C). */
 static int factorize_first(ffc__bulk *b, long nnew, const long nd[])
 {
     int st = factorize(b, 0, NULL);
@@ -1148,9 +1224,17 @@ static int first_factor(ffc__bulk *b, long nreach, const long reach[], long nc, 
     int st = FFC_OK;
     if (!b->factored) {
         st = factorize(b, 0, NULL);
-        for (int pass = 0; pass < 2 && st == FFC_ERR_SINGULAR; pass++) {
+        for (int pass = 0; pass < 3 && st == FFC_ERR_SINGULAR; pass++) {
             long nset = 0;
-            st = pass ? free_dofs(b, nc, cand, 0, &nset, bad) : free_dofs(b, nreach, reach, 1, &nset, bad);
+            if (pass == 0) {   /* three nodes far apart in each body of the reach and the facets */
+                long *sd = malloc((size_t)(nreach + nc + 1) * sizeof(long));
+                if (!sd) return FFC_ERR_MEMORY;
+                if (nreach) memcpy(sd, reach, (size_t)nreach * sizeof(long));
+                if (nc) memcpy(sd + nreach, cand, (size_t)nc * sizeof(long));
+                st = agree(b, spread_dofs(b, nreach + nc, sd, &nset));
+                free(sd);
+            } else
+                st = pass == 2 ? free_dofs(b, nc, cand, 0, &nset, bad) : free_dofs(b, nreach, reach, 1, &nset, bad);
             if (st) return st;
             if (!nset) { st = FFC_ERR_SINGULAR; continue; }
             if (b->m + nset > cap) { *bad = b->m + nset; return FFC_ERR_CAPACITY; }

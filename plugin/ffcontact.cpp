@@ -1729,6 +1729,7 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "keptLU") return in.kept;
     if (k == "contactDofs") return in.m;
     if (k == "shift") return in.shift;
+    if (k == "shiftedDofs") return in.shifted;
     if (k == "rcond") return in.rcond;
     if (k == "residual") return in.residual;
     if (k == "newtonIterations") return d.newton.iters;
@@ -1746,7 +1747,7 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "reused") return in.reused;
     if (k == "factorRanks") return in.factor_ranks;
     if (k == "factorSplit") return in.factor_split;
-    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, rcond, residual, newtonIterations, evaluations, evaluationsShared, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, reused, factorRanks, factorSplit");
+    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, shiftedDofs, rcond, residual, newtonIterations, evaluations, evaluationsShared, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, reused, factorRanks, factorSplit");
     return 0;
 }
 

@@ -183,6 +183,11 @@ static void check_case(double mu, double fx, double pz, double kgs, const char *
     assert_int_equal(si.factorizations, 1);
     if (kgs == 0) assert_true(si.shift > 0);
     else assert_true(si.shift == 0);
+    /* the shift on three nodes of each body the contact touches (the
+     * slave square and the master's, at most 18 dofs), not on the 23 free
+     * dofs of the 8 nodes the contact force reaches */
+    if (kgs == 0) assert_true(si.shifted >= 3 && si.shifted <= 18);
+    else assert_true(si.shifted == 0);
     /* slip: directions on the support of an earlier one, solved by GMRES
      * with its LU (the same answer: checked above) */
     if (!strcmp(regime, "slip")) assert_true(si.kept > 0);
