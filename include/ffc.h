@@ -190,9 +190,11 @@ int ffc_surface_normals(int nn, long nf, const long F[], long nv,
  * master facets (a link with the foot clamped there), or beyond the edge of
  * the master surface (outside the footprint: no link).  A point counts as
  * beyond the edge when its distance past the rim, in the tangent plane of
- * the facet, exceeds edge_tol h_f plus its penetration max(0, -g): a
- * penetrating point in a symmetry plane, whose foot on a tilted facet
- * falls just past the rim, keeps its link. */
+ * the facet, exceeds edge_tol h_f plus its distance |g| to the facet's
+ * plane (the cone over the rim's edge): a point in a symmetry plane, or on
+ * a slave surface flush with the master's rim, whose foot on a facet that
+ * the deformation tilted falls just past the rim, keeps its link, open or
+ * penetrating (the node-to-surface rim rule alike). */
 
 typedef struct {
     double capture_rel;  /* capture distance relative to the partner master

@@ -749,13 +749,18 @@ static void make_link(const ffc_tree *t, const cand_t *c, const double p[3],
     if (pr->where != FFC_FOOT_INSIDE && ffc__outside(pr->xi_free) > o->edge_tol) {
         int rim = pr->where <= FFC_FOOT_EDGE2 ? t->nbr[c->f * 3 + pr->where - FFC_FOOT_EDGE0] < 0
                                               : t->vrim[c->f * 3 + pr->where - FFC_FOOT_VERTEX0];
-        /* how far beyond the rim, in the facet's tangent plane: a penetrating
-         * point that overshoots by less than its depth is at the rim, not
-         * past it (a node in a symmetry plane that penetrates a tilted
-         * facet projects slightly beyond the rim) */
+        /* how far beyond the rim, in the facet's tangent plane: a point
+         * that overshoots by less than its distance to the facet's plane
+         * (depth or height) is at the rim, not past it (a node in a
+         * symmetry plane, or on a slave surface flush with the master's
+         * rim, projects slightly beyond the rim of a facet that the
+         * deformation tilted; open points too: a cylinder's end flush
+         * with a block's side, as slave, had its rim facets' points come
+         * and go with each augmentation's search, 1,490 Newton iterations
+         * against 220) */
         const double over2 = pr->dist * pr->dist - pr->gap * pr->gap;
         const double over = over2 > 0 ? sqrt(over2) : 0.0;
-        if (rim && over > o->edge_tol * t->hf[c->f] + fmax(0.0, -pr->gap)) return;
+        if (rim && over > o->edge_tol * t->hf[c->f] + fabs(pr->gap)) return;
     }
     if (pr->dist > fmax(o->capture_abs, o->capture_rel * t->hf[c->f])) return;
     lk->mf = c->f;

@@ -286,22 +286,24 @@ static void test_capture_footprint(void **state)
     for (int k = 0; k < 20; k++) {
         double p[3];
         slave_point(&s, &L[k], p);
-        int inside = p[0] > 0 && p[0] < 1 && p[1] > 0 && p[1] < 1;
-        int near = p[2] <= 0.2;
-        assert_int_equal(L[k].mf >= 0, inside && near);
+        /* (the row lies inside in y: past the rim by how far it is past x = 0 or 1) */
+        const double over = fmax(0.0, fmax(-p[0], p[0] - 1.0));
+        const int near = sqrt(over * over + p[2] * p[2]) <= 0.2;   /* (to the foot clamped on the rim) */
+        assert_int_equal(L[k].mf >= 0, near && over <= p[2]);
         if (L[k].mf >= 0) assert_close(L[k].gap, p[2], 1e-14);
     }
-    /* at the rim: a penetrating point past the rim by less than its depth
-     * keeps its link (clamped foot), by more it has none; an open point
-     * past the rim never has one */
-    const double pts[4][3] = {{1.001, 0.5, -0.01}, {1.02, 0.5, -0.01}, {1.001, 0.5, 0.01}, {-0.005, 0.5, -0.01}};
-    const int linked[4] = {1, 0, 0, 1};
-    ffc_link Lp[4];
-    assert_int_equal(ffc_search_points(t, 4, &pts[0][0], &o, Lp), 2);
-    for (int k = 0; k < 4; k++) {
+    /* at the rim: a point past the rim by less than its distance from the
+     * master plane (depth or height: the cone over the rim's edge) keeps
+     * its link (clamped foot), by more it has none */
+    const double pts[6][3] = {{1.001, 0.5, -0.01}, {1.02, 0.5, -0.01}, {1.001, 0.5, 0.01},
+                              {-0.005, 0.5, -0.01}, {1.02, 0.5, 0.01}, {-0.005, 0.5, 0.01}};
+    const int linked[6] = {1, 0, 1, 1, 0, 1};
+    ffc_link Lp[6];
+    assert_int_equal(ffc_search_points(t, 6, &pts[0][0], &o, Lp), 4);
+    for (int k = 0; k < 6; k++) {
         assert_int_equal(Lp[k].sf, k);
         assert_int_equal(Lp[k].mf >= 0, linked[k]);
-        if (linked[k]) assert_close(Lp[k].gap, -0.01, 1e-15);
+        if (linked[k]) assert_close(Lp[k].gap, pts[k][2], 1e-15);
     }
     /* bad options and sizes */
     o.capture_abs = -1;
