@@ -620,6 +620,13 @@ static long node_bfs(const int xadj[], const int adj[], long s, int dist[], int 
     return t;
 }
 
+/* 1 when K's triplet t couples two free dofs of different nodes: an edge
+ * of the node graph (spread_dofs) */
+static int node_edge(const ffc__bulk *b, long t)
+{
+    return !b->big[b->Ti[t]] && !b->big[b->Tj[t]] && b->Ti[t] / 3 != b->Tj[t] / 3;
+}
+
 /* The shift of a singular K on few dofs: in each part of K's graph (a
  * body) that holds one of the dofs seed[nseed], the free dofs of three
  * nodes far apart (a, the farthest from a seed; b, the farthest from a;
@@ -630,7 +637,7 @@ static long node_bfs(const int xadj[], const int adj[], long s, int dist[], int 
  * contact dofs themselves put every linked point's dofs there: a
  * hemisphere pushed by a force onto a block, 538 shifted dofs and dense
  * systems of 552, against 18 and 23).  Nodes are dofs / 3 (node-major
- * dofs); distances count the graph's edges. */
+ * dofs); distances count the graph's edges.  seed must not be b->nd. */
 static int spread_dofs(ffc__bulk *b, long nseed, const long seed[], long *nset)
 {
     const long n = b->n, nn = (n + 2) / 3;
@@ -639,25 +646,20 @@ static int spread_dofs(ffc__bulk *b, long nseed, const long seed[], long *nset)
     int *xadj = calloc((size_t)nn + 1, sizeof(int)), *lab = malloc((size_t)nn * 4 * sizeof(int));
     long ne = 0;
     for (long t = 0; t < b->nt; t++)
-        ne += !b->big[b->Ti[t]] && !b->big[b->Tj[t]] && b->Ti[t] / 3 != b->Tj[t] / 3;
+        if (node_edge(b, t)) { ne++; if (xadj) xadj[b->Ti[t] / 3 + 1]++; }
     int *adj = ne < 2147483647L ? malloc((size_t)(ne + 1) * sizeof(int)) : NULL;
-    long *sd = malloc((size_t)(nseed + 1) * sizeof(long));
-    if (!xadj || !lab || !adj || !sd) { free(xadj); free(lab); free(adj); free(sd); return FFC_ERR_MEMORY; }
-    memcpy(sd, seed, (size_t)nseed * sizeof(long));   /* (seed may be b->nd) */
-    for (long t = 0; t < b->nt; t++)
-        if (!b->big[b->Ti[t]] && !b->big[b->Tj[t]] && b->Ti[t] / 3 != b->Tj[t] / 3) xadj[b->Ti[t] / 3 + 1]++;
+    if (!xadj || !lab || !adj) { free(xadj); free(lab); free(adj); return FFC_ERR_MEMORY; }
     for (long v = 0; v < nn; v++) xadj[v + 1] += xadj[v];
     int *fill = lab + nn;   /* (the fill pointers, then da) */
     memcpy(fill, xadj, (size_t)nn * sizeof(int));
     for (long t = 0; t < b->nt; t++)
-        if (!b->big[b->Ti[t]] && !b->big[b->Tj[t]] && b->Ti[t] / 3 != b->Tj[t] / 3)
-            adj[fill[b->Ti[t] / 3]++] = (int)(b->Tj[t] / 3);
+        if (node_edge(b, t)) adj[fill[b->Ti[t] / 3]++] = (int)(b->Tj[t] / 3);
     int *da = lab + nn, *db = lab + 2 * nn, *q = lab + 3 * nn;
     for (long v = 0; v < 3 * nn; v++) lab[v] = -1;
     long c = 0;
     for (long k = 0; k < nseed; k++) {
-        if (sd[k] < 0 || sd[k] >= n || b->big[sd[k]] || lab[sd[k] / 3] >= 0) continue;
-        long cnt = node_bfs(xadj, adj, sd[k] / 3, lab, q);
+        if (seed[k] < 0 || seed[k] >= n || b->big[seed[k]] || lab[seed[k] / 3] >= 0) continue;
+        long cnt = node_bfs(xadj, adj, seed[k] / 3, lab, q);
         const long a = q[cnt - 1];
         cnt = node_bfs(xadj, adj, a, da, q);
         const long bb = q[cnt - 1];
@@ -674,7 +676,7 @@ static int spread_dofs(ffc__bulk *b, long nseed, const long seed[], long *nset)
                 if (!b->big[d]) b->nd[c++] = d;
         }
     }
-    free(xadj); free(lab); free(adj); free(sd);
+    free(xadj); free(lab); free(adj);
     *nset = c;
     return FFC_OK;
 }
