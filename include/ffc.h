@@ -942,6 +942,8 @@ typedef struct {
                             rank's own factor) */
     int factor_split;    /* of them, the ranks that made the last factorization's subtrees, each its share,
                             before the supernodes above them (1: one rank made it all) */
+    double t_backsolves; /* wall time of the single back-solves (seconds) */
+    long split_solves;   /* of those, the ones the machine's ranks split by the factor's subtrees (count) */
 } ffc_solve_info;
 
 /* Sets K from its triplets (Ti, Tj, Tv)[nt] (both triangles; duplicates

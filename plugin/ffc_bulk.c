@@ -25,6 +25,8 @@ void dpotrs_(const char *uplo, const int *n, const int *nrhs, const double *a, c
              const int *ldb, int *info);
 void dgemv_(const char *trans, const int *m, const int *n, const double *alpha, const double *a, const int *lda,
             const double *x, const int *incx, const double *beta, double *y, const int *incy);
+void dtrsv_(const char *uplo, const char *ta, const char *diag, const int *n, const double *a, const int *lda,
+            double *x, const int *incx);
 void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
 void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a, const int *lda, const int *ipiv,
              double *b, const int *ldb, int *info);
@@ -110,6 +112,11 @@ struct ffc__bulk {
                                   share (numeric_on_node) */
     double *wbase;             /* [L->xsize] that memory: L->x on each of them (NULL: L->x is CHOLMOD's) */
     int split;                 /* the machine's ranks that made the last factor's subtrees (ffc_super.c; 0: none) */
+    signed char *spart;        /* [nsuper] their sets: each supernode's (-1: above the sets); NULL: no split.
+                                  The single back-solves are split the same way (split_solve) */
+    double *sx;                /* [n + sbelow + n + split * ntop] split_solve's work (NULL until its first use) */
+    long *scnt;                /* [nsize] its counts of values per rank */
+    long sbelow, ntop;         /* the most rows below a supernode's diagonal block; the columns above the sets */
     int win;                   /* its handle (MPI window) */
     /* the pruned solves of a supernodal factor (pruned_block), made with the factor */
     int prune;                 /* 1: compliance columns by pruned solves when L is supernodal (default) */
@@ -172,6 +179,10 @@ static void bulk_free_factor(ffc__bulk *b)
     if (b->wbase) ffc__mpi_shared_free(b->win);
     b->wbase = NULL;
     b->split = 0;
+    free(b->spart); free(b->sx); free(b->scnt);
+    b->spart = NULL;
+    b->sx = NULL;
+    b->scnt = NULL;
     prune_free(b);
     b->prev = 0;
     b->factored = 0;
@@ -389,9 +400,148 @@ static double *dense_a(ffc__bulk *b)
     return b->A;
 }
 
-/* y = (K + S)^-1 rhs, one back-solve */
-static int backsolve(ffc__bulk *b, const double rhs[], double y[])
+static double seconds(void)
 {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* split_solve's work: x [n], the rows below one supernode [sbelow], the
+ * values gathered [n + split * ntop: at most n, or the ranks' updates of
+ * the rows above the sets], the counts [nsize] */
+static int split_work(ffc__bulk *b)
+{
+    const cholmod_factor *L = b->L;
+    const long ns = (long)L->nsuper;
+    const int *super = L->super, *pi = L->pi;
+    b->sbelow = 1;
+    b->ntop = 0;
+    for (long s = 0; s < ns; s++) {
+        const long ncol = super[s + 1] - super[s], below = (pi[s + 1] - pi[s]) - ncol;
+        if (below > b->sbelow) b->sbelow = below;
+        if (b->spart[s] < 0) b->ntop += ncol;
+    }
+    b->sx = malloc((size_t)(2 * b->n + b->sbelow + b->split * b->ntop) * sizeof(double));
+    b->scnt = malloc((size_t)b->nsize * sizeof(long));
+    return b->sx && b->scnt ? FFC_OK : FFC_ERR_MEMORY;
+}
+
+/* one supernode's forward solve (x_s = L_ss^-1 x_s, then the rows below
+ * less L_rs x_s) and backward solve (x_s = L_ss^-T (x_s - L_rs' x_r));
+ * t: [rows below] */
+static void super_forward(const cholmod_factor *L, long s, double x[], double t[])
+{
+    const int *super = L->super, *pi = L->pi, *ls = L->s;
+    const int k1 = super[s], ncol = super[s + 1] - k1, nrow = pi[s + 1] - pi[s], below = nrow - ncol, inc = 1;
+    const double *Ls = (const double *)L->x + ((const int *)L->px)[s], one = 1.0, zero = 0.0;
+    dtrsv_("L", "N", "N", &ncol, Ls, &nrow, x + k1, &inc);
+    if (below == 0) return;
+    dgemv_("N", &below, &ncol, &one, Ls + ncol, &nrow, x + k1, &inc, &zero, t, &inc);
+    const int *ri = ls + pi[s] + ncol;
+    for (int r = 0; r < below; r++) x[ri[r]] -= t[r];
+}
+
+static void super_backward(const cholmod_factor *L, long s, double x[], double t[])
+{
+    const int *super = L->super, *pi = L->pi, *ls = L->s;
+    const int k1 = super[s], ncol = super[s + 1] - k1, nrow = pi[s + 1] - pi[s], below = nrow - ncol, inc = 1;
+    const double *Ls = (const double *)L->x + ((const int *)L->px)[s], one = 1.0, mone = -1.0;
+    if (below > 0) {
+        const int *ri = ls + pi[s] + ncol;
+        for (int r = 0; r < below; r++) t[r] = x[ri[r]];
+        dgemv_("T", &below, &ncol, &mone, Ls + ncol, &nrow, t, &inc, &one, x + k1, &inc);
+    }
+    dtrsv_("L", "T", "N", &ncol, Ls, &nrow, x + k1, &inc);
+}
+
+/* Formulation: P K' P' = L L' (P = L->Perm), so y = P' L'^-T L^-1 P rhs.
+ * The factor's supernodes are split into sets of whole subtrees and the
+ * supernodes above them (b->spart, as the machine's ranks factorized
+ * them).  A subtree's forward solve writes its own rows and its
+ * ancestors' (its set's and those above the sets), and its backward
+ * solve reads the same rows.  So rank k of the machine makes set k's
+ * forward solve, starting from zero on the rows above the sets; the
+ * ranks' updates of those rows are gathered and added to rhs there in
+ * rank order (every rank the same bits); every rank makes the forward
+ * and then the backward solve of the supernodes above the sets; rank k
+ * makes set k's backward solve; and one all-gather gives every rank
+ * every set's rows.  Each rank streams its share of L instead of all of
+ * it (Hertz P1 h_c 0.0125 on two ranks, a body each: about half). */
+static int split_solve(ffc__bulk *b, const double rhs[], double y[])
+{
+    if (!b->sx) {
+        const int st = agree(b, split_work(b));
+        if (st) {
+            free(b->sx); free(b->scnt);
+            b->sx = NULL;
+            b->scnt = NULL;
+            return st;
+        }
+    }
+    const cholmod_factor *L = b->L;
+    const long n = b->n, ns = (long)L->nsuper, ntop = b->ntop;
+    const int *super = L->super, *perm = L->Perm;
+    const signed char *part = b->spart;
+    const int parts = b->split, me = b->nrank < parts ? b->nrank : -2;
+    double *x = b->sx, *t = x + n, *g = t + b->sbelow;
+    long *cnt = b->scnt;
+    for (long k = 0; k < n; k++) x[k] = rhs[perm[k]];
+    for (long s = 0; s < ns; s++)
+        if (part[s] < 0) memset(x + super[s], 0, (size_t)(super[s + 1] - super[s]) * sizeof(double));
+    for (long s = 0; s < ns; s++)
+        if (part[s] == me) super_forward(L, s, x, t);
+    int st = FFC_OK;
+    if (ntop > 0) {
+        for (int r = 0; r < b->nsize; r++) cnt[r] = r < parts ? ntop : 0;
+        if (me >= 0)
+            for (long s = 0, i = me * ntop; s < ns; s++)
+                for (int c = super[s]; c < super[s + 1] && part[s] < 0; c++) g[i++] = x[c];
+        st = ffc__mpi_allgather(b->ncomm, g, cnt);
+        if (st) return st;
+        for (long s = 0, i = 0; s < ns; s++)
+            for (int c = super[s]; c < super[s + 1] && part[s] < 0; c++, i++) {
+                double v = rhs[perm[c]];
+                for (int r = 0; r < parts; r++) v += g[r * ntop + i];
+                x[c] = v;
+            }
+        for (long s = 0; s < ns; s++)
+            if (part[s] < 0) super_forward(L, s, x, t);
+        for (long s = ns - 1; s >= 0; s--)
+            if (part[s] < 0) super_backward(L, s, x, t);
+    }
+    for (long s = ns - 1; s >= 0; s--)
+        if (part[s] == me) super_backward(L, s, x, t);
+    /* every set's rows: rank k's after those of the ranks before it */
+    for (int r = 0; r < b->nsize; r++) cnt[r] = 0;
+    for (long s = 0; s < ns; s++)
+        if (part[s] >= 0) cnt[part[s]] += super[s + 1] - super[s];
+    long off = 0;
+    for (int r = 0; r < me; r++) off += cnt[r];
+    for (long s = 0; s < ns && me >= 0; s++)
+        for (int c = super[s]; c < super[s + 1] && part[s] == me; c++) g[off++] = x[c];
+    st = ffc__mpi_allgather(b->ncomm, g, cnt);
+    if (st) return st;
+    off = 0;
+    for (int r = 0; r < parts; r++)
+        for (long s = 0; s < ns; s++)
+            for (int c = super[s]; c < super[s + 1] && part[s] == r; c++) x[c] = g[off++];
+    for (long k = 0; k < n; k++) y[perm[k]] = x[k];
+    return FFC_OK;
+}
+
+/* y = (K + S)^-1 rhs, one back-solve */
+static int backsolve_timed(ffc__bulk *b, const double rhs[], double y[])
+{
+    if (b->spart && !b->mp) {   /* (the ranks of the machine split it) */
+        const int st = agree(b, split_solve(b, rhs, y));
+        if (st) return st;
+        b->info.backsolves++;
+        b->info.split_solves++;
+        for (long i = 0; i < b->n; i++)
+            if (!isfinite(y[i])) return FFC_ERR_NONFINITE;
+        return FFC_OK;
+    }
     memcpy(b->B->x, rhs, (size_t)b->n * sizeof(double));
     if (b->mp) {
         const int st = ffc__mumps_solve(b->mp, 1, b->B->x);
@@ -406,6 +556,15 @@ static int backsolve(ffc__bulk *b, const double rhs[], double y[])
     for (long i = 0; i < b->n; i++)
         if (!isfinite(y[i])) return FFC_ERR_NONFINITE;
     return FFC_OK;
+}
+
+/* backsolve_timed, its wall time added to info.t_backsolves */
+static int backsolve(ffc__bulk *b, const double rhs[], double y[])
+{
+    const double t0 = seconds();
+    const int st = backsolve_timed(b, rhs, y);
+    b->info.t_backsolves += seconds() - t0;
+    return st;
 }
 
 /* b->info.rcond of the numeric b->L; a factor whose estimate is below
@@ -507,7 +666,10 @@ static int numeric_on_node(ffc__bulk *b, cholmod_sparse *A)
         }
         head[1] = b->info.rcond;
     }
+    if (split && b->nsize > 1 && (b->spart = malloc((size_t)b->L->nsuper)))   /* (none: CHOLMOD's solves) */
+        memcpy(b->spart, ffc__super_parts(sp), (size_t)b->L->nsuper);
     ffc__super_free(sp);
+    if (!all_ranks(b, b->spart != NULL)) { free(b->spart); b->spart = NULL; }
     if ((st = ffc__mpi_bcast_idle(b->ncomm, head, 2))) return st;
     ffc__mpi_shared_sync(win);   /* (rank 0's values seen by every rank) */
     b->info.rcond = head[1];
@@ -585,13 +747,6 @@ static int factorize_timed(ffc__bulk *b, long nnew, const long nd[])
     b->info.shift = nnew ? b->kfree : 0.0;
     b->info.shifted = nnew;
     return FFC_OK;
-}
-
-static double seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
 /* factorize_timed, its wall time added to info.t_factor */

@@ -323,6 +323,8 @@ int ffc__super_numeric(ffc__super *w, const cholmod_factor *L, double Lx[], int 
     return pass(w, L, Lx, part);
 }
 
+const signed char *ffc__super_parts(const ffc__super *w) { return w ? w->part : NULL; }
+
 double ffc__super_share(const ffc__super *w, int part)
 {
     if (!w || part < -1 || part >= w->parts) return 0.0;

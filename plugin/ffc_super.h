@@ -24,6 +24,9 @@ void ffc__super_free(ffc__super *w);
  * definite); FFC_ERR_SIZE for a part out of range. */
 int ffc__super_numeric(ffc__super *w, const cholmod_factor *L, double Lx[], int part);
 
+/* the set of each supernode [L->nsuper]: 0..parts-1, or -1 above the subtrees */
+const signed char *ffc__super_parts(const ffc__super *w);
+
 /* the share of the estimated flops of part `part` (-1: above the subtrees) */
 double ffc__super_share(const ffc__super *w, int part);
 

@@ -1744,10 +1744,11 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "factorMBmax") return in.factor_mb_max;
     if (k == "factorTime") return in.t_factor;
     if (k == "columnsTime") return in.t_columns;
+    if (k == "backsolveTime") return in.t_backsolves;
     if (k == "reused") return in.reused;
     if (k == "factorRanks") return in.factor_ranks;
     if (k == "factorSplit") return in.factor_split;
-    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, shiftedDofs, rcond, residual, newtonIterations, evaluations, evaluationsShared, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, reused, factorRanks, factorSplit");
+    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, shiftedDofs, rcond, residual, newtonIterations, evaluations, evaluationsShared, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, backsolveTime, reused, factorRanks, factorSplit");
     return 0;
 }
 

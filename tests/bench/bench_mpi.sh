@@ -2,11 +2,12 @@
 # bench_mpi.sh: strong scaling of a case on 1 and N ranks (one core per
 # rank: OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1), the runs one after the
 # other in the same invocation. Writes results/bench-mpi.csv
-#   case,options,ranks,dofs,contact_dofs,wall_s,solve_s,factor_s,speedup,newton,
+#   case,options,ranks,dofs,contact_dofs,wall_s,solve_s,factor_s,backsolve_s,speedup,newton,
 #   factor_mb_per_rank,peak_mb_per_rank,F
 # (wall_s: the scene library's time from its start to the JSON; speedup:
 # the 1-rank wall over this row's; factor_s: the bulk factorizations'
-# wall time inside solve_s (small strain); factor_mb_per_rank: MUMPS's
+# wall time inside solve_s (small strain); backsolve_s: the single
+# back-solves' (small strain, inside solve_s); factor_mb_per_rank: MUMPS's
 # factorization memory on the largest rank; peak_mb_per_rank: the largest
 # rank's peak resident memory).
 #   sh tests/bench/bench_mpi.sh [quick|full|large] [N]   (quick: h_c 0.025 and 0.0125
@@ -22,7 +23,7 @@ mode=${1:-quick}; np=${2:-2}
 mkdir -p results/bench
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 out=results/bench-mpi.csv
-echo "case,options,ranks,dofs,contact_dofs,wall_s,solve_s,factor_s,speedup,newton,factor_mb_per_rank,peak_mb_per_rank,F" > "$out"
+echo "case,options,ranks,dofs,contact_dofs,wall_s,solve_s,factor_s,backsolve_s,speedup,newton,factor_mb_per_rank,peak_mb_per_rank,F" > "$out"
 build/bench_pair "$np" | tee results/bench-mpi-machine.txt || exit 1
 num() { sed -n "s/^ *\"$2\": *\([-0-9.eE+]*\),*$/\1/p" "$1" | head -1; }
 # each row: the run of median wall time among REPS (3) runs (a run on
@@ -40,7 +41,7 @@ pair() {   # pair <case> <options...>
             echo "$(num "$j-$k.json" time_total) $k"
         done | sort -g | awk -v m=$(( (reps + 1) / 2 )) 'NR == m {print $2}' > "$j.median"
         f=$j-$(cat "$j.median").json; w=$(num "$f" time_total); [ -z "$w1" ] && w1=$w
-        echo "$case,$*,$r,$(num "$f" dofs),$(num "$f" contact_dofs),$w,$(num "$f" time_solve),$(num "$f" time_factor),$(echo "$w1 $w" | awk '{printf "%.2f", $1 / $2}'),$(num "$f" newton_iterations),$(num "$f" factor_mb_per_rank),$(num "$f" peak_mb_per_rank),$(num "$f" F)" | tee -a "$out"
+        echo "$case,$*,$r,$(num "$f" dofs),$(num "$f" contact_dofs),$w,$(num "$f" time_solve),$(num "$f" time_factor),$(num "$f" time_backsolves),$(echo "$w1 $w" | awk '{printf "%.2f", $1 / $2}'),$(num "$f" newton_iterations),$(num "$f" factor_mb_per_rank),$(num "$f" peak_mb_per_rank),$(num "$f" F)" | tee -a "$out"
     done
 }
 if [ "$mode" = large ]; then pair hertz -hc 0.008; exit 0; fi

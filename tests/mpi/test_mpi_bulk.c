@@ -432,6 +432,30 @@ static void replicated_columns(double tgv, int bodies)
     }
     assert_close(rank_spread(CT * CT + NR * CT + CT, g), 0.0, 0.0);
     free(g);
+    /* a single back-solve: split by the ranks' sets of subtrees (and the
+     * supernodes above them: one lattice's top separator, or none for two
+     * bodies on 2 ranks) against one process's CHOLMOD solve; the same
+     * factor's solves in another order: 1e-13 of the solution (K's
+     * condition below 1e3), and a residual that needs no iterative
+     * refinement (which would mend a wrong solve); every rank the same
+     * bits */
+    double *rhs = malloc(3 * LD * sizeof(double)), *xs0 = rhs + LD, *xs1 = xs0 + LD;
+    uint64_t seed = 17;
+    for (long i = 0; i < LD; i++) rhs[i] = test_rand(&seed, -1, 1);
+    assert_int_equal(ffc__bulk_solve(b[0], 0, NULL, NULL, NULL, rhs, xs0, &bad), FFC_OK);
+    ffc__bulk_info(b[1], &in);
+    const long split0 = in.split_solves, refined0 = in.refinements;
+    assert_int_equal(ffc__bulk_solve(b[1], 0, NULL, NULL, NULL, rhs, xs1, &bad), FFC_OK);
+    ffc__bulk_info(b[1], &in);
+    if (ranks > 1) assert_true(in.split_solves > split0);
+    assert_int_equal(in.refinements, refined0);   /* (its residual below 1e-13 at once: no correction) */
+    double xm = 0.0;
+    d = 0.0;
+    for (long i = 0; i < LD; i++) { xm = fmax(xm, fabs(xs0[i])); d = fmax(d, fabs(xs1[i] - xs0[i])); }
+    assert_true(xm > 0.0);
+    assert_close(d, 0.0, 1e-13 * xm);
+    assert_close(rank_spread((int)LD, xs1), 0.0, 0.0);
+    free(rhs);
     for (int k = 0; k < 2; k++) ffc__bulk_free(b[k]);
     free(Li); free(Lj); free(Lv);
 }
