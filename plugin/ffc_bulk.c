@@ -108,16 +108,15 @@ struct ffc__bulk {
     int rrank, rsize;          /* this rank, the ranks (rsize 1: one process, nothing shared) */
     long *rcount;              /* [rsize] work: the values each rank solved */
     int ncomm;                 /* the ranks of rcomm on this machine (Fortran handle; valid when nsize > 1) */
-    int nrank, nsize;          /* this rank among them, their count: they factorize K into memory they
-                                  share (numeric_on_node) */
-    double *wbase;             /* [L->xsize] that memory: L->x on each of them (NULL: L->x is CHOLMOD's) */
+    int nrank, nsize;          /* this rank among them, their count: they factorize K by subtrees, each
+                                  into its own L, and exchange the values (numeric_on_node) */
+    int fnode;                 /* the ranks that made the factor together (1: this rank alone) */
     int split;                 /* the machine's ranks that made the last factor's subtrees (ffc_super.c; 0: none) */
     signed char *spart;        /* [nsuper] their sets: each supernode's (-1: above the sets); NULL: no split.
                                   The single back-solves are split the same way (split_solve) */
     double *sx;                /* [n + sbelow + n + split * ntop] split_solve's work (NULL until its first use) */
     long *scnt;                /* [nsize] its counts of values per rank */
     long sbelow, ntop;         /* the most rows below a supernode's diagonal block; the columns above the sets */
-    int win;                   /* its handle (MPI window) */
     /* the pruned solves of a supernodal factor (pruned_block), made with the factor */
     int prune;                 /* 1: compliance columns by pruned solves when L is supernodal (default) */
     int force_super;           /* 1: a supernodal L whatever its size (test hook; 0: CHOLMOD chooses) */
@@ -174,10 +173,8 @@ static void bulk_free_factor(ffc__bulk *b)
     cholmod_dense **d[] = {&b->B, &b->X, &b->Y, &b->E, &b->Bb, &b->Xb, &b->Yb, &b->Eb};
     for (size_t k = 0; k < sizeof d / sizeof *d; k++)
         if (*d[k]) cholmod_free_dense(d[k], &b->cc);
-    if (b->L && b->wbase && b->L->x == b->wbase) b->L->x = NULL;   /* (not CHOLMOD's to free) */
     if (b->L) cholmod_free_factor(&b->L, &b->cc);
-    if (b->wbase) ffc__mpi_shared_free(b->win);
-    b->wbase = NULL;
+    b->fnode = 1;
     b->split = 0;
     free(b->spart); free(b->sx); free(b->scnt);
     b->spart = NULL;
@@ -230,6 +227,7 @@ int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const do
     b->prune = 1;
     b->rsize = 1;
     b->nsize = 1;
+    b->fnode = 1;
     const size_t nn = (size_t)n, nz = (size_t)(nt > 0 ? nt : 1);
     b->Ti = malloc(nz * sizeof(long));
     b->Tj = malloc(nz * sizeof(long));
@@ -584,17 +582,45 @@ static int numeric(ffc__bulk *b, cholmod_sparse *A)
     return conditioned(b);
 }
 
+/* the values of the runs of consecutive supernodes of set `part` of the
+ * split (-1: those above the sets), broadcast from the machine's rank
+ * `root` into every rank's L */
+static int bcast_part(ffc__bulk *b, const signed char spart[], int part, int root)
+{
+    const cholmod_factor *L = b->L;
+    const long ns = (long)L->nsuper;
+    const int *px = L->px;
+    double *x = L->x;
+    for (long s = 0; s < ns;) {
+        if (spart[s] != part) { s++; continue; }
+        long e = s;
+        while (e < ns && spart[e] == part) e++;
+        const int st = ffc__mpi_bcast_from(b->ncomm, root, x + px[s], (long)px[e] - px[s]);
+        if (st) return st;
+        s = e;
+    }
+    return FFC_OK;
+}
+
 /* The same on the ranks of each machine (replicated bulk, a supernodal L,
- * every rank with a machine-mate; called on every rank): L's values in
- * memory the machine's ranks share; they factorize into it by subtrees
- * (below), their rank 0 the rest with BLAS threads while the others wait
- * without spinning, and every rank then solves with the one factor (one
- * copy per machine instead of one per rank).  The threads are the fewest
- * ranks any machine has, so that every machine's factor has the same
- * bits.  L's structure, from the same
- * analysis of the same matrix, is the same on every rank: checked first,
- * and where it is not on some machine (or its shared memory is refused),
- * every rank factorizes for itself.  The decisions are every rank's. */
+ * every rank with a machine-mate; called on every rank): the supernodal
+ * tree's subtrees are shared out among the machine's ranks (ffc_super.c),
+ * as many sets as the fewest ranks of any machine has (every machine the
+ * same split, the same bits); rank k factorizes set k into its own L on
+ * one core, and the machine's ranks broadcast their sets' values to each
+ * other (a set is a few runs of consecutive supernodes: whole subtrees,
+ * in the tree's postorder); rank 0 then makes the supernodes above the
+ * sets with as many BLAS threads as the sets, while the others wait
+ * without spinning, and broadcasts them.  So every rank holds the whole
+ * factor, the same bits, in memory of its own, and solves with it.
+ * (An earlier build kept one L per machine in memory the ranks shared:
+ * on this project's 2-core machines, virtual, that memory came in 4 KB
+ * pages and the solves read it several times slower than private
+ * memory, and erratically: Hertz P1 h_c 0.008 on 2 ranks, the single
+ * back-solves 5 to 10 s against 0.7 to 0.9 s.)  L's structure, from the
+ * same analysis of the same matrix, is the same on every rank: checked
+ * first; where it is not on some machine, or no split applies, every
+ * rank factorizes for itself.  The decisions are every rank's. */
 static int numeric_on_node(ffc__bulk *b, cholmod_sparse *A)
 {
     const cholmod_factor *L = b->L;
@@ -604,75 +630,52 @@ static int numeric_on_node(ffc__bulk *b, cholmod_sparse *A)
     memcpy(s0, sig, sizeof sig);
     int st = ffc__mpi_bcast_idle(b->ncomm, s0, 4);
     if (st) return st;
-    double *x = NULL;
-    int win = 0;
     const int same = ffc__mpi_min(b->ncomm, memcmp(s0, sig, sizeof sig) == 0);   /* (alike on the machine) */
-    if (same) st = ffc__mpi_shared(b->ncomm, (long)L->xsize, &x, &win);
-    const int got = same && ffc__mpi_min(b->ncomm, st == FFC_OK);
-    if (!all_ranks(b, got)) {
-        if (got) ffc__mpi_shared_free(win);
-        return numeric(b, A);
-    }
     const int threads = ffc__mpi_min(b->rcomm, b->nsize);
-    b->wbase = x;
-    b->win = win;
-    /* L made numeric (its values not yet touched), the values moved to the shared memory */
+    /* L made numeric (its values not yet touched) */
     cholmod_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, b->L, &b->cc);
     st = b->cc.status < CHOLMOD_OK || !b->L->x ? FFC_ERR_MEMORY : FFC_OK;
-    if (!st) {
-        cholmod_free(b->L->xsize, sizeof(double), b->L->x, &b->cc);
-        b->L->x = x;
-    }
-    if (!all_ranks(b, st == FFC_OK)) return st ? st : FFC_ERR_MEMORY;
-    double head[2] = {0.0, 0.0};   /* rank 0's status and rcond */
-    /* the supernodal tree's subtrees shared out among the machine's ranks
-     * (ffc_super.c), as many sets as threads (the fewest ranks of any
-     * machine: every machine the same split, the same bits), each
-     * factorized by one rank on one core into the shared L, then the
-     * supernodes above them by rank 0 with the BLAS threads; where that
-     * does not apply (on some rank), rank 0 factorizes the whole with
-     * CHOLMOD and the threads */
     int sst = FFC_OK;
-    ffc__super *sp = ffc__super_create(b->L, A, threads, &sst);
-    const int split = all_ranks(b, sp != NULL);
-    b->split = split ? threads : 0;
-    if (split) {
-        int mine = 1;
-        if (b->nrank < threads) {
-            const int old = ffc__blas_threads(1);
-            mine = ffc__super_numeric(sp, b->L, x, b->nrank) == FFC_OK;
+    ffc__super *sp = same && !st ? ffc__super_create(b->L, A, threads, &sst) : NULL;
+    if (!all_ranks(b, sp != NULL)) {
+        ffc__super_free(sp);
+        return numeric(b, A);
+    }
+    b->spart = malloc((size_t)b->L->nsuper);
+    if (!all_ranks(b, b->spart != NULL)) {
+        ffc__super_free(sp);
+        return FFC_ERR_MEMORY;
+    }
+    memcpy(b->spart, ffc__super_parts(sp), (size_t)b->L->nsuper);
+    b->split = threads;
+    double *x = b->L->x, head[2] = {0.0, 0.0};   /* rank 0's status and rcond */
+    int mine = 1;
+    if (b->nrank < threads) {
+        const int old = ffc__blas_threads(1);
+        mine = ffc__super_numeric(sp, b->L, x, b->nrank) == FFC_OK;
+        ffc__blas_threads(old);
+    }
+    const int all = ffc__mpi_min(b->ncomm, mine);
+    for (int p = 0; p < threads && all && !st; p++) st = bcast_part(b, b->spart, p, p);
+    if (st) {
+        ffc__super_free(sp);
+        return st;
+    }
+    if (b->nrank == 0) {
+        head[0] = all ? FFC_OK : FFC_ERR_SINGULAR;
+        if (all) {
+            const int old = ffc__blas_threads(threads);
+            head[0] = ffc__super_numeric(sp, b->L, x, -1);
             ffc__blas_threads(old);
         }
-        ffc__mpi_shared_sync(win);   /* (every rank's supernodes seen by rank 0) */
-        const int all = ffc__mpi_min(b->ncomm, mine);
-        if (b->nrank == 0) {
-            head[0] = all ? FFC_OK : FFC_ERR_SINGULAR;
-            if (all) {
-                const int old = ffc__blas_threads(threads);
-                head[0] = ffc__super_numeric(sp, b->L, x, -1);
-                ffc__blas_threads(old);
-            }
-            if (head[0] == FFC_OK) head[0] = conditioned(b);
-            head[1] = b->info.rcond;
-        }
-    } else if (b->nrank == 0) {
-        const int old = ffc__blas_threads(threads);
-        head[0] = numeric(b, A);
-        ffc__blas_threads(old);
-        if (head[0] == FFC_OK && b->L->x != x) {   /* (CHOLMOD put the values elsewhere) */
-            memcpy(x, b->L->x, b->L->xsize * sizeof(double));
-            cholmod_free(b->L->xsize, sizeof(double), b->L->x, &b->cc);
-            b->L->x = x;
-        }
+        if (head[0] == FFC_OK) head[0] = conditioned(b);
         head[1] = b->info.rcond;
     }
-    if (split && b->nsize > 1 && (b->spart = malloc((size_t)b->L->nsuper)))   /* (none: CHOLMOD's solves) */
-        memcpy(b->spart, ffc__super_parts(sp), (size_t)b->L->nsuper);
     ffc__super_free(sp);
-    if (!all_ranks(b, b->spart != NULL)) { free(b->spart); b->spart = NULL; }
     if ((st = ffc__mpi_bcast_idle(b->ncomm, head, 2))) return st;
-    ffc__mpi_shared_sync(win);   /* (rank 0's values seen by every rank) */
+    if (head[0] == FFC_OK && (st = bcast_part(b, b->spart, -1, 0))) return st;
     b->info.rcond = head[1];
+    b->fnode = b->nsize;
     return (int)head[0];
 }
 
@@ -726,7 +729,7 @@ static int factorize_timed(ffc__bulk *b, long nnew, const long nd[])
     cholmod_free_triplet(&T, &b->cc);
     if (!b->mp) st = agree(b, st);   /* (every rank analysed A, or none goes on) */
     if (!st && !b->mp) {
-        /* one factor per machine when every rank has a machine-mate */
+        /* one factorization per machine when every rank has a machine-mate */
         const int node = b->rsize > 1 && all_ranks(b, b->L->is_super && b->nsize > 1);
         st = node ? numeric_on_node(b, A) : numeric(b, A);
     }
@@ -1254,8 +1257,8 @@ void ffc__bulk_info(const ffc__bulk *b, ffc_solve_info *info)
     if (b) *info = b->info;
     else memset(info, 0, sizeof *info);
     info->ranks = b ? b->rsize : 1;
-    info->factor_ranks = b && b->wbase ? b->nsize : 1;
-    info->factor_split = b && b->wbase && b->split ? b->split : 1;
+    info->factor_ranks = b && b->factored ? b->fnode : 1;
+    info->factor_split = b && b->factored && b->fnode > 1 && b->split ? b->split : 1;
     if (b && b->mp) ffc__mumps_info(b->mp, &info->ranks, &info->factor_mb, &info->factor_mb_max);
 }
 

@@ -95,14 +95,9 @@ int ffc__mpi_allgather(int fcomm, double buf[], const long count[]);
 int ffc__mpi_node(int fcomm, int *ncomm, int *rank, int *size);
 void ffc__mpi_comm_free(int fcomm);
 int ffc__mpi_bcast_idle(int fcomm, double v[], int n);
-/* n doubles of memory shared by the ranks of fcomm (one machine; a
- * collective call): held by its rank 0, *base on every rank, *win the
- * handle for ffc__mpi_shared_free (collective too); after a rank wrote
- * into it, and before the others read, every rank calls
- * ffc__mpi_shared_sync (collective: a fence). */
-int ffc__mpi_shared(int fcomm, long n, double **base, int *win);
-void ffc__mpi_shared_sync(int win);
-void ffc__mpi_shared_free(int win);
+/* n doubles broadcast from rank root of fcomm to its other ranks (every
+ * rank waits in MPI's own way) */
+int ffc__mpi_bcast_from(int fcomm, int root, double v[], long n);
 /* The BLAS's threads set to n (n <= 0: unchanged); returns the count
  * before, or 0 when the BLAS is not OpenBLAS (nothing changed). */
 int ffc__blas_threads(int n);

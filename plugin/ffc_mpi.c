@@ -204,42 +204,15 @@ int ffc__mpi_bcast_idle(int fcomm, double v[], int n)
     return FFC_OK;
 }
 
-int ffc__mpi_shared(int fcomm, long n, double **base, int *win)
+int ffc__mpi_bcast_from(int fcomm, int root, double v[], long n)
 {
-    *base = NULL;
-    *win = 0;
-    if (!running()) return FFC_ERR_UNAVAILABLE;
+    if (!running()) return FFC_OK;
     const MPI_Comm c = MPI_Comm_f2c((MPI_Fint)fcomm);
-    int rank = 0;
-    MPI_Comm_rank(c, &rank);
-    MPI_Win w;
-    double *p = NULL;
-    const MPI_Aint bytes = rank == 0 ? (MPI_Aint)n * (MPI_Aint)sizeof(double) : 0;
-    MPI_Comm_set_errhandler(c, MPI_ERRORS_RETURN);   /* (shared memory refused: a status, not an abort) */
-    const int e = MPI_Win_allocate_shared(bytes, sizeof(double), MPI_INFO_NULL, c, &p, &w);
-    MPI_Comm_set_errhandler(c, MPI_ERRORS_ARE_FATAL);
-    if (e != MPI_SUCCESS) return FFC_ERR_MEMORY;
-    MPI_Aint size = 0;
-    int unit = 0;
-    if (MPI_Win_shared_query(w, 0, &size, &unit, &p) != MPI_SUCCESS || size < (MPI_Aint)n * (MPI_Aint)sizeof(double)) {
-        MPI_Win_free(&w);
-        return FFC_ERR_MEMORY;
+    for (long k = 0; k < n; k += 1L << 27) {   /* (MPI's counts are int: pieces of 1 GB) */
+        const long m = n - k < (1L << 27) ? n - k : (1L << 27);
+        if (MPI_Bcast(v + k, (int)m, MPI_DOUBLE, root, c) != MPI_SUCCESS) return FFC_ERR_UNAVAILABLE;
     }
-    *base = p;
-    *win = (int)MPI_Win_c2f(w);
     return FFC_OK;
-}
-
-void ffc__mpi_shared_sync(int win)
-{
-    MPI_Win_fence(0, MPI_Win_f2c((MPI_Fint)win));
-}
-
-void ffc__mpi_shared_free(int win)
-{
-    if (!running()) return;   /* (after MPI_Finalize: the process's end frees it) */
-    MPI_Win w = MPI_Win_f2c((MPI_Fint)win);
-    MPI_Win_free(&w);
 }
 
 #else
@@ -306,17 +279,11 @@ int ffc__mpi_bcast_idle(int fcomm, double v[], int n)
     return FFC_OK;
 }
 
-int ffc__mpi_shared(int fcomm, long n, double **base, int *win)
+int ffc__mpi_bcast_from(int fcomm, int root, double v[], long n)
 {
-    (void)fcomm; (void)n;
-    *base = NULL;
-    *win = 0;
-    return FFC_ERR_UNAVAILABLE;
+    (void)fcomm; (void)root; (void)v; (void)n;
+    return FFC_OK;
 }
-
-void ffc__mpi_shared_sync(int win) { (void)win; }
-
-void ffc__mpi_shared_free(int win) { (void)win; }
 
 #endif
 

@@ -358,9 +358,10 @@ static void test_shared_lu(void **state)
  * and H (same bits) as one process's computing them all, in the same
  * order; C grown in two calls (72 columns, two blocks of solves on one
  * process; then 30: the shares are uneven on 4 ranks), some columns
- * outside the rows R.  The ranks (one machine) share one factor: each
+ * outside the rows R.  The ranks (one machine) make one factor: each
  * makes its share of the subtrees of the supernodal tree, rank 0 the
- * supernodes above them with their BLAS threads.  Without Dirichlet rows
+ * supernodes above them with their BLAS threads, and the values are
+ * broadcast so that every rank holds all of it.  Without Dirichlet rows
  * (tgv 0) K is singular: the factorization fails, and every rank returns
  * it, as one process does.  Two lattices (bodies = 2: L's forest has a
  * tree for each) take shares of equal work, by the trees' backward
