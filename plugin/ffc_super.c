@@ -1,7 +1,7 @@
 /* ffc_super.c: the numeric supernodal Cholesky factorization P A P' = L L'
  * on CHOLMOD's supernodal analysis, by sets of whole subtrees of its
  * supernodal tree and then the supernodes above them (the ranks of one
- * machine each factorize a set into one shared L). */
+ * machine each factorize a set, and exchange the values). */
 #include <stdlib.h>
 #include <string.h>
 
