@@ -110,10 +110,10 @@ struct ffc__bulk {
     int ncomm;                 /* the ranks of rcomm on this machine (Fortran handle; valid when nsize > 1) */
     int nrank, nsize;          /* this rank among them, their count: they factorize K by subtrees, each
                                   into its own L, and exchange the values (numeric_on_node) */
-    int fnode;                 /* the ranks that made the factor together (1: this rank alone) */
     int split;                 /* the machine's ranks that made the last factor's subtrees (ffc_super.c; 0: none) */
-    signed char *spart;        /* [nsuper] their sets: each supernode's (-1: above the sets); NULL: no split.
-                                  The single back-solves are split the same way (split_solve) */
+    signed char *spart;        /* [nsuper] their sets: each supernode's (-1: above the sets); NULL: no split
+                                  (the machine's ranks did not make the factor together). The single
+                                  back-solves are split the same way (split_solve) */
     double *sx;                /* [n + sbelow + n + split * ntop] split_solve's work (NULL until its first use) */
     long *scnt;                /* [nsize] its counts of values per rank */
     long sbelow, ntop;         /* the most rows below a supernode's diagonal block; the columns above the sets */
@@ -174,7 +174,6 @@ static void bulk_free_factor(ffc__bulk *b)
     for (size_t k = 0; k < sizeof d / sizeof *d; k++)
         if (*d[k]) cholmod_free_dense(d[k], &b->cc);
     if (b->L) cholmod_free_factor(&b->L, &b->cc);
-    b->fnode = 1;
     b->split = 0;
     free(b->spart); free(b->sx); free(b->scnt);
     b->spart = NULL;
@@ -227,7 +226,6 @@ int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const do
     b->prune = 1;
     b->rsize = 1;
     b->nsize = 1;
-    b->fnode = 1;
     const size_t nn = (size_t)n, nz = (size_t)(nt > 0 ? nt : 1);
     b->Ti = malloc(nz * sizeof(long));
     b->Tj = malloc(nz * sizeof(long));
@@ -531,25 +529,20 @@ static int split_solve(ffc__bulk *b, const double rhs[], double y[])
 /* y = (K + S)^-1 rhs, one back-solve */
 static int backsolve_timed(ffc__bulk *b, const double rhs[], double y[])
 {
+    int st;
     if (b->spart && !b->mp) {   /* (the ranks of the machine split it) */
-        const int st = agree(b, split_solve(b, rhs, y));
-        if (st) return st;
-        b->info.backsolves++;
-        b->info.split_solves++;
-        for (long i = 0; i < b->n; i++)
-            if (!isfinite(y[i])) return FFC_ERR_NONFINITE;
-        return FFC_OK;
-    }
-    memcpy(b->B->x, rhs, (size_t)b->n * sizeof(double));
-    if (b->mp) {
-        const int st = ffc__mumps_solve(b->mp, 1, b->B->x);
-        if (st) return st;
+        st = agree(b, split_solve(b, rhs, y));
+        b->info.split_solves += st == FFC_OK;
     } else {
-        const int ok = cholmod_solve2(CHOLMOD_A, b->L, b->B, NULL, &b->X, NULL, &b->Y, &b->E, &b->cc);
-        const int st = agree(b, ok ? FFC_OK : FFC_ERR_MEMORY);   /* (CHOLMOD on every rank) */
-        if (st) return st;
+        memcpy(b->B->x, rhs, (size_t)b->n * sizeof(double));
+        if (b->mp) st = ffc__mumps_solve(b->mp, 1, b->B->x);
+        else {   /* (CHOLMOD on every rank) */
+            const int ok = cholmod_solve2(CHOLMOD_A, b->L, b->B, NULL, &b->X, NULL, &b->Y, &b->E, &b->cc);
+            st = agree(b, ok ? FFC_OK : FFC_ERR_MEMORY);
+        }
+        if (!st) memcpy(y, b->mp ? b->B->x : b->X->x, (size_t)b->n * sizeof(double));
     }
-    memcpy(y, b->mp ? b->B->x : b->X->x, (size_t)b->n * sizeof(double));
+    if (st) return st;
     b->info.backsolves++;
     for (long i = 0; i < b->n; i++)
         if (!isfinite(y[i])) return FFC_ERR_NONFINITE;
@@ -675,7 +668,6 @@ static int numeric_on_node(ffc__bulk *b, cholmod_sparse *A)
     if ((st = ffc__mpi_bcast_idle(b->ncomm, head, 2))) return st;
     if (head[0] == FFC_OK && (st = bcast_part(b, b->spart, -1, 0))) return st;
     b->info.rcond = head[1];
-    b->fnode = b->nsize;
     return (int)head[0];
 }
 
@@ -1257,8 +1249,8 @@ void ffc__bulk_info(const ffc__bulk *b, ffc_solve_info *info)
     if (b) *info = b->info;
     else memset(info, 0, sizeof *info);
     info->ranks = b ? b->rsize : 1;
-    info->factor_ranks = b && b->factored ? b->fnode : 1;
-    info->factor_split = b && b->factored && b->fnode > 1 && b->split ? b->split : 1;
+    info->factor_ranks = b && b->spart ? b->nsize : 1;
+    info->factor_split = b && b->spart ? b->split : 1;
     if (b && b->mp) ffc__mumps_info(b->mp, &info->ranks, &info->factor_mb, &info->factor_mb_max);
 }
 
