@@ -157,8 +157,11 @@ impact-grid: all
 	@sh scripts/impact-grid.sh spheres
 	@sh scripts/impact-grid.sh oblique
 
-.PHONY: study study-quick
+.PHONY: study study-quick study-ensemble
 study: all
 	@sh scripts/study.sh full
 study-quick: all
 	@sh scripts/study.sh quick
+# Hertz and Cattaneo-Mindlin on 8 meshes of each size (min / median / max of the errors)
+study-ensemble: all
+	@sh scripts/ensemble.sh
