@@ -68,6 +68,7 @@ awk -F, 'NR == 1 {for (i = 1; i <= NF; i++) name[i] = $i; next}
 cat results/ensemble.txt
 # the Hertz errors against h_c: median with the ensemble's range, one file
 # per method and quantity (the methods drawn side by side: h_c x 1.04^k)
+rm -f results/ensemble/hertz-*-err_p.dat results/ensemble/hertz-*-err_p0_fit.dat
 awk '$1 == "hertz" && ($4 == "err_p" || $4 == "err_p0_fit") {gsub("%", "")
     f = "results/ensemble/hertz-" $2 "-" $4 ".dat"; print $3, $6, $7, $8 > f}' results/ensemble.txt
 gnuplot <<'GP'
