@@ -3,35 +3,41 @@
 # fitted peak, nodal scatter) and Cattaneo-Mindlin (stick radius c_area) on
 # n meshes of nearly the same size, h = h_c (1 + k / 80), k = 0 .. n-1 (up
 # to +8.75% with n = 8: gmsh places every node anew), for each method, and
-# writes
-#   results/ensemble.csv   one row per run
-#   results/ensemble.txt   per case, method, h_c and quantity: min, median, max
-#   results/ensemble.png   the Hertz errors against h_c, the ensemble's range
-#   (a method or level not run leaves its curve out: gnuplot warns)
-# One core per run (OMP_NUM_THREADS = OPENBLAS_NUM_THREADS = 1).
+# writes (name: ensemble unless given)
+#   results/<name>.csv   one row per run
+#   results/<name>.txt   per case, method, h_c and quantity: min, median, max
+#   results/<name>.png   the Hertz errors against h_c, the ensemble's range
+#                        (with Hertz levels; a method not run leaves its
+#                        curves out, gnuplot warns)
+# and each run's files in results/<name>/. One core per run
+# (OMP_NUM_THREADS = OPENBLAS_NUM_THREADS = 1).
 # Usage: sh scripts/ensemble.sh [n (8)] [methods ("al nts mortar")]
-#                               [Hertz levels ("0.05 0.025 0.0125")] [Cattaneo-Mindlin levels ("0.025")]
+#            [Hertz levels ("0.05 0.025 0.0125")] [Cattaneo-Mindlin levels ("0.025")] [name]
 #   ("" for no level of a case)
 cd "$(dirname "$0")/.." || exit 2
 n=${1:-8}
 methods=${2-"al nts mortar"}
 hlevels=${3-"0.05 0.025 0.0125"}
 clevels=${4-"0.025"}
+name=${5:-ensemble}
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
-mkdir -p results/ensemble
-csv=results/ensemble.csv
-val() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" | head -1; }
+dir=results/$name
+mkdir -p "$dir"
+csv=results/$name.csv
+val() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" 2>/dev/null | head -1; }
+last() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" 2>/dev/null | tail -1; }
 echo "case,method,level,h,converged,dofs,err_p,err_p0_fit,err_a_fit,p_bias,p_scatter,err_c_area_1,err_c_area_2,err_c_area_3,t_total" > "$csv"
 for m in $methods; do
     for L in $hlevels; do
         k=0
         while [ $k -lt "$n" ]; do
             h=$(awk -v L="$L" -v k="$k" 'BEGIN {printf "%.7g", L * (1 + k / 80)}')
-            out=results/ensemble/hertz-$m-$h
+            out=$dir/hertz-$m-$h
+            rm -f "$out.json"
             sh scripts/ff scripts/hertz.edp -hc "$h" -method "$m" -verbose 0 -vtk 0 -out "$out" > "$out.log" 2>&1
             j=$out.json
-            echo "hertz,$m,$L,$h,$(val $j converged),$(val $j dofs),$(val $j err_p),$(val $j err_p0_fit),$(val $j err_a_fit),$(val $j p_bias),$(val $j p_scatter),,,,$(val $j time_total)" >> "$csv"
-            echo "  hertz $m h_c $h: err_p $(val $j err_p), err_p0_fit $(val $j err_p0_fit)"
+            echo "hertz,$m,$L,$h,$(val "$j" converged),$(val "$j" dofs),$(val "$j" err_p),$(val "$j" err_p0_fit),$(val "$j" err_a_fit),$(val "$j" p_bias),$(val "$j" p_scatter),,,,$(val "$j" time_total)" >> "$csv"
+            echo "  hertz $m h_c $h: err_p $(val "$j" err_p), err_p0_fit $(val "$j" err_p0_fit)"
             k=$((k + 1))
         done
     done
@@ -39,12 +45,12 @@ for m in $methods; do
         k=0
         while [ $k -lt "$n" ]; do
             h=$(awk -v L="$L" -v k="$k" 'BEGIN {printf "%.7g", L * (1 + k / 80)}')
-            out=results/ensemble/cm-$m-$h
+            out=$dir/cm-$m-$h
+            rm -f "$out.json"
             sh scripts/ff scripts/cattaneo-mindlin.edp -hc "$h" -method "$m" -out "$out" > "$out.log" 2>&1
             j=$out.json
-            e=$(sed -n 's/.*"level\([012]\)_err_c_area": \([^,}]*\).*/\2/p' "$j" | tr '\n' ',' | sed 's/,$//')
-            conv=$(sed -n 's/.*"converged": \([^,}]*\).*/\1/p' "$j" | tail -1)
-            echo "cattaneo-mindlin,$m,$L,$h,$conv,$(val $j dofs),,,,,,$e,$(sed -n 's/.*"time_total": \([^,}]*\).*/\1/p' "$j" | tail -1)" >> "$csv"
+            e="$(val "$j" level0_err_c_area),$(val "$j" level1_err_c_area),$(val "$j" level2_err_c_area)"   # (a level missing: empty)
+            echo "cattaneo-mindlin,$m,$L,$h,$(last "$j" converged),$(val "$j" dofs),,,,,,$e,$(last "$j" time_total)" >> "$csv"
             echo "  cattaneo-mindlin $m h_c $h: err_c_area $e"
             k=$((k + 1))
         done
@@ -64,16 +70,17 @@ awk -F, 'NR == 1 {for (i = 1; i <= NF; i++) name[i] = $i; next}
                 med = c % 2 ? w[(c + 1) / 2] : (w[c / 2] + w[c / 2 + 1]) / 2
                 split(key, kk, " ")
                 printf "%-17s %-7s %-7s %-14s %3d %8.2f%% %8.2f%% %8.2f%%\n", kk[1], kk[2], kk[3], name[i], c, 100 * w[1], 100 * med, 100 * w[c]}}}' \
-    "$csv" > results/ensemble.txt
-cat results/ensemble.txt
+    "$csv" > "results/$name.txt"
+cat "results/$name.txt"
 # the Hertz errors against h_c: median with the ensemble's range, one file
 # per method and quantity (the methods drawn side by side: h_c x 1.04^k)
-rm -f results/ensemble/hertz-*-err_p.dat results/ensemble/hertz-*-err_p0_fit.dat
-awk '$1 == "hertz" && ($4 == "err_p" || $4 == "err_p0_fit") {gsub("%", "")
-    f = "results/ensemble/hertz-" $2 "-" $4 ".dat"; print $3, $6, $7, $8 > f}' results/ensemble.txt
-gnuplot <<'GP'
+rm -f "$dir"/hertz-*-err_p.dat "$dir"/hertz-*-err_p0_fit.dat
+awk -v dir="$dir" '$1 == "hertz" && ($4 == "err_p" || $4 == "err_p0_fit") {gsub("%", "")
+    f = dir "/hertz-" $2 "-" $4 ".dat"; print $3, $6, $7, $8 > f}' "results/$name.txt"
+if ls "$dir"/hertz-*-err_p.dat > /dev/null 2>&1; then
+gnuplot -e "dir = '$dir'; png = 'results/$name.png'" - <<'GP'
 set terminal pngcairo size 860,540
-set output 'results/ensemble.png'
+set output png
 set logscale xy
 set grid
 set key bottom left font ",9"
@@ -83,9 +90,12 @@ set title 'Hertz, linear elements: the errors over meshes of nearly each size'
 set xrange [0.1:0.01]
 set yrange [0.01:100]
 ms = "al nts mortar"
-plot for [i = 1:3] sprintf('results/ensemble/hertz-%s-err_p.dat', word(ms, i)) using ($1 * 1.04**(i - 2)):3:2:4 \
+plot for [i = 1:3] sprintf('%s/hertz-%s-err_p.dat', dir, word(ms, i)) using ($1 * 1.04**(i - 2)):3:2:4 \
          with yerrorlines lw 2 lc i pt 7 title word(ms, i) . ', largest nodal pressure', \
-     for [i = 1:3] sprintf('results/ensemble/hertz-%s-err_p0_fit.dat', word(ms, i)) using ($1 * 1.04**(i - 2)):3:2:4 \
+     for [i = 1:3] sprintf('%s/hertz-%s-err_p0_fit.dat', dir, word(ms, i)) using ($1 * 1.04**(i - 2)):3:2:4 \
          with yerrorlines lw 2 dt 2 lc i pt 5 title word(ms, i) . ', fitted peak'
 GP
-echo "wrote $csv, results/ensemble.txt, results/ensemble.png"
+echo "wrote $csv, results/$name.txt, results/$name.png"
+else
+echo "wrote $csv, results/$name.txt (no Hertz level: no figure)"
+fi
