@@ -27,24 +27,21 @@ csv=results/$name.csv
 val() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" 2>/dev/null | head -1; }
 last() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" 2>/dev/null | tail -1; }
 echo "case,method,level,h,converged,dofs,err_p,err_p0_fit,err_a_fit,p_bias,p_scatter,err_c_area_1,err_c_area_2,err_c_area_3,t_total" > "$csv"
+# the mesh sizes of a level: L (1 + k / 80), k = 0 .. n-1
+sizes() { awk -v L="$1" -v n="$n" 'BEGIN {for (k = 0; k < n; k++) printf "%.7g\n", L * (1 + k / 80)}'; }
 for m in $methods; do
     for L in $hlevels; do
-        k=0
-        while [ $k -lt "$n" ]; do
-            h=$(awk -v L="$L" -v k="$k" 'BEGIN {printf "%.7g", L * (1 + k / 80)}')
+        for h in $(sizes "$L"); do
             out=$dir/hertz-$m-$h
             rm -f "$out.json"
             sh scripts/ff scripts/hertz.edp -hc "$h" -method "$m" -verbose 0 -vtk 0 -out "$out" > "$out.log" 2>&1
             j=$out.json
             echo "hertz,$m,$L,$h,$(val "$j" converged),$(val "$j" dofs),$(val "$j" err_p),$(val "$j" err_p0_fit),$(val "$j" err_a_fit),$(val "$j" p_bias),$(val "$j" p_scatter),,,,$(val "$j" time_total)" >> "$csv"
             echo "  hertz $m h_c $h: err_p $(val "$j" err_p), err_p0_fit $(val "$j" err_p0_fit)"
-            k=$((k + 1))
         done
     done
     for L in $clevels; do
-        k=0
-        while [ $k -lt "$n" ]; do
-            h=$(awk -v L="$L" -v k="$k" 'BEGIN {printf "%.7g", L * (1 + k / 80)}')
+        for h in $(sizes "$L"); do
             out=$dir/cm-$m-$h
             rm -f "$out.json"
             sh scripts/ff scripts/cattaneo-mindlin.edp -hc "$h" -method "$m" -out "$out" > "$out.log" 2>&1
@@ -52,7 +49,6 @@ for m in $methods; do
             e="$(val "$j" level0_err_c_area),$(val "$j" level1_err_c_area),$(val "$j" level2_err_c_area)"   # (a level missing: empty)
             echo "cattaneo-mindlin,$m,$L,$h,$(last "$j" converged),$(val "$j" dofs),,,,,,$e,$(last "$j" time_total)" >> "$csv"
             echo "  cattaneo-mindlin $m h_c $h: err_c_area $e"
-            k=$((k + 1))
         done
     done
 done
