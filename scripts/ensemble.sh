@@ -24,8 +24,7 @@ export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 dir=results/$name
 mkdir -p "$dir"
 csv=results/$name.csv
-val() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" 2>/dev/null | head -1; }
-last() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" 2>/dev/null | tail -1; }
+. scripts/json.sh
 echo "case,method,level,h,converged,dofs,err_p,err_p0_fit,err_a_fit,p_bias,p_scatter,err_c_area_1,err_c_area_2,err_c_area_3,t_total" > "$csv"
 # the mesh sizes of a level: L (1 + k / 80), k = 0 .. n-1
 sizes() { awk -v L="$1" -v n="$n" 'BEGIN {for (k = 0; k < n; k++) printf "%.7g\n", L * (1 + k / 80)}'; }

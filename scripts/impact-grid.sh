@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.." || exit 2
 case=${1:-bar}
 mass=${2:-redistributed}
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
-val() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" | head -1; }
+. scripts/json.sh
 case $case in
 bar)
     csv=results/impact-grid.csv script=scripts/bar-impact.edp hopt=-h extra=

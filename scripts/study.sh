@@ -22,6 +22,7 @@
 # results/study.csv; friction: only the friction cases, then all plots)
 cd "$(dirname "$0")/.." || exit 2
 mode=${1:-full}
+. scripts/json.sh   # val, last, tval: the JSON's fields
 mkdir -p results/study
 csv=results/study.csv
 reps=3
@@ -34,8 +35,6 @@ if [ ! -f "$refjson" ] || [ "$mode" != quick ]; then
     [ "$mode" = quick ] && refargs="-hc 0.1 -DQUADRATIC=1" || refargs="-hc 0.05 -DQUADRATIC=1"
     sh scripts/ff scripts/hertz.edp $refargs -verbose 0 -vtk 0 -out results/study/reference > /dev/null 2>&1
 fi
-val() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" | head -1; }
-tval() { val "$1" "time_$2"; }   # time split
 F_ref=$(val "$refjson" F); p0_ref=$(val "$refjson" p0_fit); a_ref=$(val "$refjson" a_fit)
 
 echo "knob,label,order,h_c,eps_factor,pentol,qdeg,converged,dofs,F,a,a_fit,p_max,p0_fit,a_hertz,p0_hertz,err_a,err_a_fit,err_p,err_p0_fit,err_F_ref,err_p0_ref,err_a_ref,max_penetration,newton,uzawa,factorizations,t_total,t_search,t_contact,t_bulk,t_solve,peak_mb,reps,method,solver" > "$csv"
@@ -104,8 +103,6 @@ fi
 fi
 
 if [ "$mode" != plots ]; then
-val() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" | head -1; }
-tval() { val "$1" "time_$2"; }
 # friction: both solver paths on the sliding block and Cattaneo-Mindlin, and
 # the sliding block's knobs (increments per ramp, tangential penalty)
 fcsv=results/study-friction.csv
@@ -123,7 +120,6 @@ frun() {   # frun <case> <label> <h> <error field (max over the file)> <args...>
     tmed=$(echo $times | tr ' ' '\n' | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}')
     err=$(sed -n "s/.*\"$ef\": \([^,}]*\).*/\1/p" "$j" | sort -g | tail -1)
     solver=$(val "$j" linear_solver | tr -d '"')
-    last() { sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p" "$1" | tail -1; }   # the run's total, after per-level entries
     echo "$case_,$label,$h,$solver,$([ $rc = 0 ] && echo 1 || echo 0),$ef,$err,$(last $j newton_iterations),$(last $j uzawa_iterations),$(val $j factorizations),$(val $j contact_dofs),$tmed,$(tval $j search),$(tval $j contact),$(tval $j bulk),$(tval $j solve),$n,$(tail -1 "$out.mem" | awk '{printf "%.1f", $1 / 1024}'),$(val $j method | tr -d '"'),$(val $j active_set_iterations),$*" >> "$fcsv"
     echo "  $label: wall=$tmed s"
 }
