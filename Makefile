@@ -15,7 +15,7 @@ CFLAGS  += -std=c11 -Wall -Wextra -Werror -fPIC -Iinclude
 FFFLAGS  = -shared -fPIC -O2 -std=c++14 -DBAMG_LONG_LONG -DNCHECKPTR -DNDEBUG \
            -isystem /usr/include/freefem++ -Iinclude -Wall -Wno-unused-parameter -Wno-mismatched-new-delete
 B       := build
-CLIBS   := -lcholmod -llapack -lblas -lm
+CLIBS   := -lumfpack -lcholmod -llapack -lblas -lm
 
 CSRC    := $(wildcard plugin/*.c)
 COBJ    := $(patsubst plugin/%.c,$(B)/obj/%.o,$(CSRC))

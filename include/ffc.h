@@ -13,8 +13,6 @@ enum {
     FFC_OK = 0,
     FFC_INFO_EDGE = 1,            /* projection foot clamped onto a facet edge */
     FFC_INFO_VERTEX = 2,          /* projection foot clamped onto a facet vertex */
-    FFC_INFO_MAXIT = 3,           /* Newton stopped at its iteration limit */
-    FFC_INFO_NODESCENT = 4,       /* Newton found no direction that lowers the residual */
     FFC_ERR_NULL = -1,            /* a required pointer is NULL */
     FFC_ERR_SIZE = -2,            /* an array size or count is out of range */
     FFC_ERR_NONFINITE = -3,       /* NaN or Inf in an input */
@@ -37,6 +35,27 @@ enum {
 
 /* Human-readable text of a status code (static string, never NULL). */
 const char *ffc_strerror(int status);
+
+/* What an error's index counts. */
+typedef enum {
+    FFC_AT_NONE = 0,   /* no index */
+    FFC_AT_DOF,        /* a degree of freedom (3 node + component) */
+    FFC_AT_NODE,       /* a node */
+    FFC_AT_FACET,      /* a facet of a surface */
+    FFC_AT_LINK,       /* a contact link */
+    FFC_AT_PAIR,       /* a contact pair */
+    FFC_AT_TRIPLET,    /* an entry of a triplet list */
+    FFC_AT_COUNT       /* not a position: the count or size needed */
+} ffc_where;
+
+/* A failure's record: its status, what failed (an index and what it
+ * counts) and a message naming the cause (with sizes where they matter). */
+typedef struct {
+    int status;        /* a negative FFC_ERR_* (0: none) */
+    ffc_where where;   /* what index counts */
+    long index;        /* -1: none */
+    char msg[200];     /* one line, no trailing newline ("" when none) */
+} ffc_error;
 
 /* ------------------------------------------------------------- effects */
 /* What a scene computes: kernels skip every term whose effect is off. */
@@ -1000,6 +1019,24 @@ int ffc_scene_set_parallel(ffc_scene *s, const ffc_parallel *p);
  * MUMPS's). */
 int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], const long Tj[], const double Tv[],
                        const double b[], double x[], long *bad);
+/* A full solver: A x = b for a general sparse A (a Newton system of the
+ * whole mesh: not symmetric with friction, indefinite with multipliers)
+ * by UMFPACK, in this process.  The pattern of the last call is kept:
+ * a call with the same order and the same (Ti, Tj) in the same order
+ * reuses its analysis (ordering and symbolic factorization) and only
+ * factorizes numerically. */
+typedef struct ffc_full ffc_full;
+int ffc_full_create(ffc_full **out);
+void ffc_full_free(ffc_full *f);
+/* Solves A x = b[n], A from its triplets (Ti, Tj, Tv)[nt] (duplicates
+ * summed).  FFC_ERR_INDEX / FFC_ERR_NONFINITE for a bad entry,
+ * FFC_ERR_SINGULAR for an exactly zero pivot (a tiny one gives a huge
+ * solution: the caller checks the residual), FFC_ERR_MEMORY; err (may be
+ * NULL) names the cause. */
+int ffc_full_solve(ffc_full *f, long n, long nt, const long Ti[], const long Tj[], const double Tv[],
+                   const double b[], double x[], ffc_error *err);
+/* Its counters (factorizations, backsolves, rcond) and the patterns it analysed. */
+int ffc_full_info(const ffc_full *f, ffc_solve_info *info, long *analyses);
 /* 1 in a build with MPI and parallel MUMPS (-DFFC_MPI), else 0. */
 int ffc_has_mpi(void);
 
@@ -1084,6 +1121,15 @@ int ffc_scene_solve_info(const ffc_scene *s, ffc_solve_info *info);
  * singular, on the nodes the force reaches, then on the linked points'
  * facets.  The shifted dofs belong to C. */
 enum { FFC_NEWTON_HIST = 64 };
+/* Why a Newton loop stopped: the condensed Newton's return value, and the
+ * scene driver's Newton's (the same values in the script). */
+typedef enum {
+    FFC_NEWTON_CONVERGED = 0,  /* the residual met the tolerance */
+    FFC_NEWTON_MAXIT = 1,      /* the iteration limit */
+    FFC_NEWTON_NODESCENT = 2,  /* no direction that lowers the residual, or no admissible step along it */
+    FFC_NEWTON_LINEAR = 3,     /* the linear solve failed (a singular or inaccurate system) */
+    FFC_NEWTON_CAPACITY = 4    /* the condensed system would hold more contact dofs than allowed */
+} ffc_newton_reason;
 typedef struct {
     int max_iter;      /* Newton iterations at most (>= 1) */
     int max_ls;        /* line-search evaluations per iteration (>= 0; 0: full steps) */
@@ -1114,6 +1160,7 @@ typedef struct {
     long grown;        /* of them, those that joined during the call (count) */
     long support;      /* the largest dense system solved (count) */
     double res;        /* |rho| at the end (force) */
+    int reason;        /* why it stopped (ffc_newton_reason) */
     int nhist;         /* entries of hist */
     double hist[FFC_NEWTON_HIST]; /* |rho| at each iteration's start, then the last (force) */
 } ffc_newton_info;
@@ -1125,8 +1172,9 @@ ffc_newton_opts ffc_newton_defaults(void);
 /* Runs the condensed Newton from u[n] (n = 3 nv) with its residual r[n]
  * (FreeFEM's tgv rows included: a Dirichlet row's r / K_ii is the error
  * of its value, which the first step removes); u is the converged
- * displacement on FFC_OK, the last iterate on FFC_INFO_MAXIT and
- * FFC_INFO_NODESCENT, unchanged on an error.  FFC_ERR_EMPTY without a
+ * displacement on FFC_NEWTON_CONVERGED, the last iterate on
+ * FFC_NEWTON_MAXIT and FFC_NEWTON_NODESCENT (the returned reason),
+ * unchanged on an error (a negative status).  FFC_ERR_EMPTY without a
  * bulk matrix, FFC_ERR_VALUE for a scene with node-to-surface pairs (or,
  * with FFC_TANGENT_RANKED, pairs with multipliers at quadrature points) or
  * options out of range, FFC_ERR_CAPACITY when C would hold more than
@@ -1136,6 +1184,53 @@ ffc_newton_opts ffc_newton_defaults(void);
  * entry of r or u). */
 int ffc_scene_newton(ffc_scene *s, const double r[], double u[], const ffc_newton_opts *o, ffc_newton_info *info,
                      long *bad);
+
+/* The line search of every Newton loop (the condensed Newton here, the
+ * scene driver's Newton in the script), by reverse communication: the
+ * caller evaluates where it is told and reports.
+ *
+ * Formulation: along a direction d from u, g(a) = r(u + a d) . d (g(0) <
+ * 0 for a descent direction).  Phase 1 (secant): the root of g on [0, a0]
+ * by regula falsi (Illinois: a bound kept twice has its g halved), the
+ * next point clamped to 5 % inside the bracket; a point is taken once
+ * |g| <= ls_tol |g(0)|, or where g < 0 at the upper bound, or at a = 1
+ * when the caller reports the full step taken (|r| at least halved with
+ * the contact state unchanged: a tangent that is not symmetric can make
+ * g(0) small against |r| |d|).  Phase 2 (guard): a step that makes |r|
+ * more than ten times |r(u)| is halved.  Each phase takes at most max_ls
+ * evaluations; a point the caller rejects (an inverted element) shortens
+ * the step (phase 1: to the middle of the bracket, as its new upper
+ * bound; phase 2: halved) and counts as an evaluation.  The point last
+ * evaluated is not evaluated again. */
+typedef struct {
+    int max_ls;        /* evaluations per phase (>= 0) */
+    double ls_tol;     /* phase 1's acceptance |g| <= ls_tol |g(0)| (0 < ls_tol < 1) */
+    double g0, rn;     /* g(0) and |r(u)| */
+    double a;          /* the point to evaluate, or the step taken at the end */
+    double at;         /* the point last evaluated (-1: none) */
+    double rt;         /* |r| there */
+    double alo, glo, ahi, ghi; /* phase 1's bracket and g at its ends */
+    int side;          /* the bound phase 1 moved last: -1 the lower, 1 the upper, 0 none */
+    int phase;         /* 1 secant, 2 guard, 0 done */
+    int guard;         /* 1: phase 2 follows phase 1 */
+    int it;            /* evaluations in the present phase (count) */
+    int waiting;       /* 1: a point was handed out and not yet reported */
+    long cuts;         /* steps shortened (count) */
+} ffc_linesearch;
+
+/* Starts a search from a0 (the largest admissible step, <= 1) with g(0)
+ * and |r(u)|; secant / guard: run phase 1 / phase 2.  FFC_ERR_VALUE for
+ * max_ls < 0 or ls_tol outside (0, 1). */
+int ffc_ls_start(ffc_linesearch *s, int max_ls, double ls_tol, double a0, double g0, double rn, int secant,
+                 int guard);
+/* 1: evaluate at *a, then ffc_ls_report (or ffc_ls_reject); 0: the search
+ * is over, take the step *a. */
+int ffc_ls_next(ffc_linesearch *s, double *a);
+/* The evaluation at the point handed out: g there, |r| there, and (at
+ * a = 1) whether the full step is taken on |r| alone. */
+int ffc_ls_report(ffc_linesearch *s, double g, double rnorm, int full_taken);
+/* The point handed out is not admissible (not evaluated). */
+int ffc_ls_reject(ffc_linesearch *s);
 
 /* ------------------------------------- node-to-surface Lagrange multipliers */
 /* Each slave node c is paired with the master facet (i, j, k) under it:

@@ -1,5 +1,7 @@
-/* ffc_bulk.h: the bulk factorization a scene keeps (ffc_bulk.c); not part
- * of the public interface (ffc_scene_set_bulk / ffc_scene_solve are). */
+/* ffc_bulk.h: the bulk factorization a scene keeps and the solvers on it
+ * (ffc_bulk.c, ffc_columns.c, ffc_csolve.c, ffc_cnewton.c, ffc_saddle.c);
+ * not part of the public interface (ffc_scene_set_bulk, ffc_scene_solve,
+ * ffc_scene_newton, ffc_scene_nts_solve are). */
 #ifndef FFC_BULK_H
 #define FFC_BULK_H
 
@@ -15,6 +17,8 @@ typedef struct ffc__bulk ffc__bulk;
 int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long mmax,
                      ffc__bulk **out, long *bad);
 void ffc__bulk_free(ffc__bulk *b);
+/* The reason of the engine's last failure (never NULL for a bulk). */
+const ffc_error *ffc__bulk_error(const ffc__bulk *b);
 /* Factorizes with parallel MUMPS over the Fortran communicator fcomm
  * instead of CHOLMOD (FFC_ERR_UNAVAILABLE in a build without MPI). */
 int ffc__bulk_set_mumps(ffc__bulk *b, int fcomm);

@@ -11,8 +11,6 @@ const char *ffc_strerror(int status)
     case FFC_OK: return "success";
     case FFC_INFO_EDGE: return "projection foot clamped onto a facet edge";
     case FFC_INFO_VERTEX: return "projection foot clamped onto a facet vertex";
-    case FFC_INFO_MAXIT: return "Newton stopped at its iteration limit";
-    case FFC_INFO_NODESCENT: return "Newton found no direction that lowers the residual";
     case FFC_ERR_NULL: return "a required array is missing (NULL)";
     case FFC_ERR_SIZE: return "array size or count out of range";
     case FFC_ERR_NONFINITE: return "NaN or Inf in input";

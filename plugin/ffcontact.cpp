@@ -1704,13 +1704,13 @@ long sceneNewton(const Named &nm, FFScene *const &C, KN<double> *const &r, KN<do
     long bad = -1;
     int st = ffc_scene_newton(d.s, pr, uv.data(), &o, &d.newton, &bad);
     if (st == FFC_ERR_EMPTY) fail(fn, "argument 'C': no bulk matrix yet (ffcBulk(C, K) first)");
-    if (st == FFC_ERR_SINGULAR) return 3;
-    if (st == FFC_ERR_CAPACITY) return 4;
+    if (st == FFC_ERR_SINGULAR) return FFC_NEWTON_LINEAR;
+    if (st == FFC_ERR_CAPACITY) return FFC_NEWTON_CAPACITY;
     if (st < 0) scene_error(fn, st, bad, "the condensed Newton");
     for (long i = 0; i < n; i++) (*u)[i] = uv[i];
     hist->resize(d.newton.nhist);
     for (int i = 0; i < d.newton.nhist; i++) (*hist)[i] = d.newton.hist[i];
-    return st == FFC_OK ? 0 : st == FFC_INFO_MAXIT ? 1 : 2;
+    return st;
 }
 
 // ffcSolverStat(C, name): a counter of the bulk solves (see ffc_solve_info).

@@ -238,7 +238,7 @@ static void test_quadratic(void **state)
     o.frel = 1e-15;
     ffc_newton_info in;
     int st = ffc_scene_newton(s, r, u, &o, &in, &bad);
-    assert_true(st == FFC_OK || st == FFC_INFO_MAXIT);
+    assert_true(st == FFC_NEWTON_CONVERGED || st == FFC_NEWTON_MAXIT);
     int checked = 0;
     for (int k = 0; k + 1 < in.nhist; k++) {
         const double e = in.hist[k] / in.hist[0], e1 = in.hist[k + 1] / in.hist[0];

@@ -1,15 +1,14 @@
-/* ffc_mumps.c: a scene's bulk matrix factorized and solved by parallel
- * MUMPS over an MPI communicator (built with -DFFC_MPI; without it every
- * call answers FFC_ERR_UNAVAILABLE). */
+/* ffc_eng_mumps.c: the parallel MUMPS engine over an MPI communicator
+ * (built with -DFFC_MPI; without it, FFC_ERR_UNAVAILABLE). */
 #include <stdlib.h>
 
-#include "ffc.h"
-#include "ffc_mumps.h"
+#include "ffc_engine.h"
 #include "ffc_internal.h"
 
 #ifdef FFC_MPI
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include <dmumps_c.h>
@@ -20,17 +19,22 @@
 #define INFO(k) info[(k) - 1]
 #define CNTL(k) cntl[(k) - 1]
 
-struct ffc__mumps {
+typedef struct {
+    ffc__engine base;
     DMUMPS_STRUC_C id;         /* MUMPS's instance */
     MPI_Comm comm;             /* its communicator */
     int rank, ranks;           /* this rank, their count */
     int have;                  /* 1: initialized (job -1 done) */
-    int factored;              /* 1: a factorization is held */
     MUMPS_INT *ri, *rj;        /* [nloc] this rank's share of the entries (1-based) */
     double *rv;                /* [nloc] */
     long nloc;
     double mb_rank, mb_max;    /* factorization memory: this rank's, the largest (MB) */
-};
+} ffc__mumps;
+
+static int mumps_agree(const ffc__engine *e, int ok)
+{
+    return ffc__mpi_min((int)((const ffc__mumps *)e)->id.comm_fortran, ok);
+}
 
 static void call(ffc__mumps *m, int job)
 {
@@ -93,7 +97,7 @@ static int share(ffc__mumps *m, long nl)
     m->ri = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
     m->rj = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(MUMPS_INT));
     m->rv = malloc((size_t)(nl > 0 ? nl : 1) * sizeof(double));
-    if (!ffc__mumps_agree(m, m->ri && m->rj && m->rv)) return FFC_ERR_MEMORY;
+    if (!mumps_agree(&m->base, m->ri && m->rj && m->rv)) return FFC_ERR_MEMORY;
     m->nloc = nl;
     DMUMPS_STRUC_C *id = &m->id;
     id->ICNTL(1) = -1; id->ICNTL(2) = -1; id->ICNTL(3) = -1; id->ICNTL(4) = 0;   /* kernels never print */
@@ -106,70 +110,104 @@ static int share(ffc__mumps *m, long nl)
     return FFC_OK;
 }
 
-int ffc__mumps_create(int fcomm, ffc__mumps **out)
+static void mumps_release(ffc__engine *e)
 {
-    if (!out) return FFC_ERR_NULL;
-    *out = NULL;
-    ffc__mumps *m = calloc(1, sizeof *m);
-    if (!m) return FFC_ERR_MEMORY;
-    /* symmetric (LDL^T: its null and negative pivots are counted; SYM=1 counts no null ones) */
-    const int st = start(m, fcomm, 2);
-    if (st) { free(m); return st; }
-    *out = m;
-    return FFC_OK;
+    e->factored = 0;
 }
 
-void ffc__mumps_free(ffc__mumps *m)
+static void mumps_free(ffc__engine *e)
 {
+    ffc__mumps *m = (ffc__mumps *)e;
     if (!m) return;
     if (m->have) call(m, -2);
     free(m->ri); free(m->rj); free(m->rv);
     free(m);
 }
 
-int ffc__mumps_factor(ffc__mumps *m, long n, long nz, const int ti[], const int tj[], const double tv[])
+/* this rank's share of A's entries, [lo, hi) of the list, handed to MUMPS */
+static int take_share(ffc__mumps *m, const ffc__tri *A)
 {
-    if (!m) return FFC_ERR_NULL;
-    if (n <= 0 || nz < 0 || n > 2147483647L) return FFC_ERR_SIZE;
-    /* this rank's share: the entries [lo, hi) */
-    const long lo = nz * m->rank / m->ranks, hi = nz * (m->rank + 1) / m->ranks, nl = hi - lo;
+    const long lo = A->nz * m->rank / m->ranks, hi = A->nz * (m->rank + 1) / m->ranks, nl = hi - lo;
     if (share(m, nl)) return FFC_ERR_MEMORY;
     for (long k = 0; k < nl; k++) {
-        m->ri[k] = (MUMPS_INT)ti[lo + k] + 1;
-        m->rj[k] = (MUMPS_INT)tj[lo + k] + 1;
-        m->rv[k] = tv[lo + k];
+        m->ri[k] = (MUMPS_INT)A->i[lo + k] + 1;
+        m->rj[k] = (MUMPS_INT)A->j[lo + k] + 1;
+        m->rv[k] = A->v[lo + k];
     }
+    return FFC_OK;
+}
+
+static int mumps_analyze(ffc__engine *e, const ffc__tri *A)
+{
+    ffc__mumps *m = (ffc__mumps *)e;
+    if (A->n <= 0 || A->nz < 0 || A->n > 2147483647L)
+        return ffc__engine_fail(e, FFC_ERR_SIZE, FFC_AT_COUNT, A->n, "MUMPS: order %ld out of range", A->n);
+    e->factored = 0;
+    e->n = A->n;
+    if (take_share(m, A))
+        return ffc__engine_fail(e, FFC_ERR_MEMORY, FFC_AT_COUNT, A->nz, "MUMPS: out of memory for %ld entries",
+                                A->nz);
     DMUMPS_STRUC_C *id = &m->id;
     id->ICNTL(20) = 0;       /* dense right-hand sides, on the host */
     id->ICNTL(21) = 0;       /* the solution on the host, over the right-hand sides */
     id->ICNTL(24) = 1;       /* null pivots detected ... */
     id->CNTL(3) = 1e-12;     /* ... below 1e-12 of K's norm: CHOLMOD's rcond test */
-    id->n = (MUMPS_INT)n;
-    m->factored = 0;
-    call_relaxed(m, 4, NULL, 0);  /* analysis and factorization */
-    const int e = id->INFOG(1);
-    if (e == -10 || e == -40 || (e >= 0 && (id->INFOG(28) > 0 || id->INFOG(12) > 0))) return FFC_ERR_SINGULAR;
-    if (e == -13 || e == -19 || short_workspace(e)) return FFC_ERR_MEMORY;
-    if (e < 0) return FFC_ERR_SINGULAR;
-    m->mb_rank = id->INFO(16);
-    m->mb_max = id->INFOG(21);
-    m->factored = 1;
+    id->n = (MUMPS_INT)A->n;
+    call(m, 1);              /* analysis */
+    const int er = id->INFOG(1);
+    if (er == -13 || er < 0)
+        return ffc__engine_fail(e, FFC_ERR_MEMORY, FFC_AT_COUNT, A->n, "MUMPS: the analysis of a matrix of order "
+                                "%ld with %ld entries failed (INFOG(1) = %d)", A->n, A->nz, er);
     return FFC_OK;
 }
 
-int ffc__mumps_solve(ffc__mumps *m, long nrhs, double B[])
+static int mumps_factorize(ffc__engine *e, const ffc__tri *A)
 {
-    if (!m || !B) return FFC_ERR_NULL;
-    if (!m->factored) return FFC_ERR_EMPTY;
-    if (nrhs <= 0 || (long)m->id.n * nrhs > 2147483647L) return FFC_ERR_SIZE;
+    ffc__mumps *m = (ffc__mumps *)e;
+    if (A->n != e->n) return ffc__engine_fail(e, FFC_ERR_EMPTY, FFC_AT_NONE, -1, "MUMPS: not analysed");
+    e->factored = 0;
+    if (take_share(m, A))
+        return ffc__engine_fail(e, FFC_ERR_MEMORY, FFC_AT_COUNT, A->nz, "MUMPS: out of memory for %ld entries",
+                                A->nz);
+    DMUMPS_STRUC_C *id = &m->id;
+    call_relaxed(m, 2, NULL, 0);  /* factorization */
+    const int er = id->INFOG(1);
+    int st = FFC_OK;
+    if (er == -10 || er == -40 || (er >= 0 && (id->INFOG(28) > 0 || id->INFOG(12) > 0))) st = FFC_ERR_SINGULAR;
+    else if (er == -13 || er == -19 || short_workspace(er)) st = FFC_ERR_MEMORY;
+    else if (er < 0) st = FFC_ERR_SINGULAR;
+    e->info->rcond = 0.0;
+    if (st == FFC_ERR_SINGULAR)
+        return ffc__engine_fail(e, st, FFC_AT_NONE, -1, "MUMPS: the matrix is singular or not positive definite "
+                                "(INFOG(1) = %d, null pivots %d, negative pivots %d)", er, (int)id->INFOG(28),
+                                (int)id->INFOG(12));
+    if (st)
+        return ffc__engine_fail(e, st, FFC_AT_COUNT, A->n, "MUMPS: out of memory factorizing a matrix of order "
+                                "%ld with %ld entries (INFOG(1) = %d)", A->n, A->nz, er);
+    m->mb_rank = id->INFO(16);
+    m->mb_max = id->INFOG(21);
+    e->info->ranks = m->ranks;
+    e->info->factor_mb = m->mb_rank;
+    e->info->factor_mb_max = m->mb_max;
+    e->factored = 1;
+    return FFC_OK;
+}
+
+static int mumps_solve(ffc__engine *e, const double b[], double x[])
+{
+    ffc__mumps *m = (ffc__mumps *)e;
+    if (!e->factored) return ffc__engine_fail(e, FFC_ERR_EMPTY, FFC_AT_NONE, -1, "MUMPS: not factorized");
+    memcpy(x, b, (size_t)e->n * sizeof(double));
     /* the host's alone: MUMPS refuses a right-hand side on the other ranks
-     * in a later sparse solve (ffc__mumps_inverse) once one was given */
-    m->id.rhs = m->rank == 0 ? B : NULL;
-    m->id.nrhs = (MUMPS_INT)nrhs;
+     * in a later sparse solve (inverse_piece) once one was given */
+    m->id.rhs = m->rank == 0 ? x : NULL;
+    m->id.nrhs = 1;
     m->id.lrhs = m->id.n;
     call(m, 3);
-    if (m->id.INFOG(1) < 0) return FFC_ERR_MEMORY;
-    MPI_Bcast(B, (int)((long)m->id.n * nrhs), MPI_DOUBLE, 0, m->comm);
+    if (m->id.INFOG(1) < 0)
+        return ffc__engine_fail(e, FFC_ERR_MEMORY, FFC_AT_COUNT, e->n, "MUMPS: a solve of order %ld failed "
+                                "(INFOG(1) = %d)", e->n, (int)m->id.INFOG(1));
+    MPI_Bcast(x, (int)m->id.n, MPI_DOUBLE, 0, m->comm);
     return FFC_OK;
 }
 
@@ -180,15 +218,14 @@ static int by_key(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-int ffc__mumps_agree(ffc__mumps *m, int ok)
-{
-    return m ? ffc__mpi_min((int)m->id.comm_fortran, ok) : ok;
-}
-
-int ffc__mumps_inverse(ffc__mumps *m, long ncols, const long cols[], long nrows, const long rows[], double X[])
+/* Entries of the inverse: X[r + c * nrows] = (A^-1)[rows[r], cols[c]]
+ * (no index twice in either list), on every rank.  MUMPS prunes its
+ * forward and backward solves to the tree paths of the rows and columns
+ * asked for (ICNTL(30)). */
+static int inverse_piece(ffc__mumps *m, long ncols, const long cols[], long nrows, const long rows[], double X[])
 {
     if (!m || (ncols > 0 && (!cols || !rows))) return FFC_ERR_NULL;
-    if (!m->factored) return FFC_ERR_EMPTY;
+    if (!m->base.factored) return FFC_ERR_EMPTY;
     const long n = m->id.n, nz = ncols * nrows;
     if (ncols < 0 || nrows <= 0 || nz > 2147483646L) return FFC_ERR_SIZE;
     if (ncols == 0) return FFC_OK;
@@ -199,7 +236,7 @@ int ffc__mumps_inverse(ffc__mumps *m, long ncols, const long cols[], long nrows,
     keyed *cp = malloc((size_t)ncols * sizeof *cp), *rp = malloc((size_t)nrows * sizeof *rp);
     MUMPS_INT *ptr = malloc((size_t)(n + 1) * sizeof *ptr), *irs = malloc((size_t)nz * sizeof *irs);
     double *rs = malloc((size_t)nz * sizeof *rs);
-    int st = ffc__mumps_agree(m, cp && rp && ptr && irs && rs && X) ? FFC_OK : FFC_ERR_MEMORY;
+    int st = mumps_agree(&m->base, cp && rp && ptr && irs && rs && X) ? FFC_OK : FFC_ERR_MEMORY;
     if (!st) {
         for (long k = 0; k < ncols; k++) cp[k] = (keyed){cols[k], k};
         for (long k = 0; k < nrows; k++) rp[k] = (keyed){rows[k], k};
@@ -245,26 +282,64 @@ int ffc__mumps_inverse(ffc__mumps *m, long ncols, const long cols[], long nrows,
     return st;
 }
 
-int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], const long Tj[], const double Tv[],
-                       const double b[], double x[], long *bad)
+enum { INV_ENTRIES = 1 << 21 };   /* values per piece (MUMPS's transient work: about 20 bytes each, 40 MB) */
+
+static int mumps_inverse(ffc__engine *e, long nc, long cols[], long nrows, const long rows[], ffc__inv_sink sink,
+                         void *ctx)
 {
-    if (!p || !b || !x || (nt > 0 && (!Ti || !Tj || !Tv))) return FFC_ERR_NULL;
-    if (n <= 0 || nt < 0 || n > 2147483647L) return FFC_ERR_SIZE;
-    if (p->engine != FFC_ENGINE_MUMPS) return p->engine == FFC_ENGINE_CHOLMOD ? FFC_ERR_UNAVAILABLE : FFC_ERR_VALUE;
-    int st = ffc__check_triplets(n, nt, Ti, Tj, Tv, bad);
-    if (st) return st;
-    for (long i = 0; i < n; i++)
-        if (!isfinite(b[i])) { if (bad) *bad = i; return FFC_ERR_NONFINITE; }
+    ffc__mumps *m = (ffc__mumps *)e;
+    if (nc <= 0) return FFC_OK;
+    if (!e->factored) return ffc__engine_fail(e, FFC_ERR_EMPTY, FFC_AT_NONE, -1, "MUMPS: not factorized");
+    const long chunk = nrows > 0 && INV_ENTRIES / nrows > 0 ? INV_ENTRIES / nrows : 1;
+    double *V = malloc((size_t)(nrows > 0 ? nrows : 1) * (nc < chunk ? nc : chunk) * sizeof *V);
+    int st = mumps_agree(e, V != NULL) ? FFC_OK : FFC_ERR_MEMORY;
+    for (long k0 = 0; k0 < nc && !st; k0 += chunk) {
+        const long n1 = nc - k0 < chunk ? nc - k0 : chunk;
+        st = inverse_piece(m, n1, cols + k0, nrows, rows, V);
+        if (!st) e->info->backsolves += n1;
+        if (!st) st = sink(ctx, n1, cols + k0, V);
+    }
+    free(V);
+    if (st == FFC_ERR_MEMORY)
+        return ffc__engine_fail(e, st, FFC_AT_COUNT, nc, "MUMPS: out of memory for %ld columns of the inverse on "
+                                "%ld rows", nc, nrows);
+    return st;
+}
+
+static const ffc__engine_ops mumps_ops = {"MUMPS", mumps_analyze, mumps_factorize, mumps_solve, mumps_inverse,
+                                          mumps_agree, mumps_release, mumps_free};
+
+int ffc__mumps_create(ffc_solve_info *info, int fcomm, int sym, ffc__engine **out)
+{
+    if (!out || !info) return FFC_ERR_NULL;
+    *out = NULL;
+    ffc__mumps *m = calloc(1, sizeof *m);
+    if (!m) return FFC_ERR_MEMORY;
+    m->base.op = &mumps_ops;
+    m->base.info = info;
+    m->base.err.index = -1;
+    /* symmetric: LDL^T (its null and negative pivots are counted; SYM=1 counts no null ones) */
+    const int st = start(m, fcomm, sym ? 2 : 0);
+    if (st) { free(m); return st; }
+    info->ranks = m->ranks;
+    info->factor_mb = info->factor_mb_max = 0.0;
+    *out = &m->base;
+    return FFC_OK;
+}
+
+int ffc__mumps_solve_once(int fcomm, int own, const ffc__tri *A, const double b[], double x[], ffc_error *err)
+{
+    const long n = A->n, nt = A->nz;
     ffc__mumps m = {0};
-    st = start(&m, p->comm, 0);   /* general: a contact tangent with friction is not symmetric */
+    int st = start(&m, fcomm, 0);   /* general: a contact tangent with friction is not symmetric */
     if (st) return st;
-    const long lo = p->own ? 0 : nt * m.rank / m.ranks, nl = p->own ? nt : nt * (m.rank + 1) / m.ranks - lo;
+    const long lo = own ? 0 : nt * m.rank / m.ranks, nl = own ? nt : nt * (m.rank + 1) / m.ranks - lo;
     st = share(&m, nl);
     if (!st) {
         for (long k = 0; k < nl; k++) {
-            m.ri[k] = (MUMPS_INT)Ti[lo + k] + 1;
-            m.rj[k] = (MUMPS_INT)Tj[lo + k] + 1;
-            m.rv[k] = Tv[lo + k];
+            m.ri[k] = (MUMPS_INT)A->i[lo + k] + 1;
+            m.rj[k] = (MUMPS_INT)A->j[lo + k] + 1;
+            m.rv[k] = A->v[lo + k];
         }
         DMUMPS_STRUC_C *id = &m.id;
         /* no null-pivot detection: like UMFPACK, a tiny pivot (a body that
@@ -276,7 +351,7 @@ int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], 
                                     saddle matrices with tgv rows lost 1e-5 of a pressure without them */
         id->n = (MUMPS_INT)n;
         memcpy(x, b, (size_t)n * sizeof(double));
-        id->rhs = m.rank == 0 ? x : NULL;   /* (the host's alone, as in ffc__mumps_solve) */
+        id->rhs = m.rank == 0 ? x : NULL;   /* (the host's alone, as in mumps_solve) */
         id->nrhs = 1;
         id->lrhs = (MUMPS_INT)n;
         call_relaxed(&m, 6, b, n);  /* analysis, factorization and solve */
@@ -284,61 +359,31 @@ int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], 
         if (e == -10) st = FFC_ERR_SINGULAR;
         else if (e < 0) st = FFC_ERR_MEMORY;
         else MPI_Bcast(x, (int)n, MPI_DOUBLE, 0, m.comm);
+        if (st && err) {
+            err->status = st;
+            err->where = FFC_AT_COUNT;
+            err->index = n;
+            snprintf(err->msg, sizeof err->msg, "MUMPS: %s (order %ld, %ld entries, INFOG(1) = %d)",
+                     st == FFC_ERR_SINGULAR ? "a zero pivot" : "out of memory", n, nt, e);
+        }
     }
     call(&m, -2);
     free(m.ri); free(m.rj); free(m.rv);
     return st;
 }
 
-void ffc__mumps_info(const ffc__mumps *m, int *ranks, double *mb_rank, double *mb_max)
-{
-    if (ranks) *ranks = m ? m->ranks : 1;
-    if (mb_rank) *mb_rank = m ? m->mb_rank : 0.0;
-    if (mb_max) *mb_max = m ? m->mb_max : 0.0;
-}
-
 #else /* a build without MPI */
 
-int ffc__mumps_create(int fcomm, ffc__mumps **out)
+int ffc__mumps_create(ffc_solve_info *info, int fcomm, int sym, ffc__engine **out)
 {
-    (void)fcomm;
+    (void)info; (void)fcomm; (void)sym;
     if (out) *out = NULL;
     return FFC_ERR_UNAVAILABLE;
 }
-void ffc__mumps_free(ffc__mumps *m) { (void)m; }
-int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], const long Tj[], const double Tv[],
-                       const double b[], double x[], long *bad)
+int ffc__mumps_solve_once(int fcomm, int own, const ffc__tri *A, const double b[], double x[], ffc_error *err)
 {
-    (void)n; (void)nt; (void)Ti; (void)Tj; (void)Tv; (void)bad;
-    if (!p || !b || !x) return FFC_ERR_NULL;
+    (void)fcomm; (void)own; (void)A; (void)b; (void)x; (void)err;
     return FFC_ERR_UNAVAILABLE;
-}
-int ffc__mumps_factor(ffc__mumps *m, long n, long nz, const int ti[], const int tj[], const double tv[])
-{
-    (void)m; (void)n; (void)nz; (void)ti; (void)tj; (void)tv;
-    return FFC_ERR_UNAVAILABLE;
-}
-int ffc__mumps_solve(ffc__mumps *m, long nrhs, double B[])
-{
-    (void)m; (void)nrhs; (void)B;
-    return FFC_ERR_UNAVAILABLE;
-}
-int ffc__mumps_agree(ffc__mumps *m, int ok)
-{
-    (void)m;
-    return ok;
-}
-int ffc__mumps_inverse(ffc__mumps *m, long ncols, const long cols[], long nrows, const long rows[], double X[])
-{
-    (void)m; (void)ncols; (void)cols; (void)nrows; (void)rows; (void)X;
-    return FFC_ERR_UNAVAILABLE;
-}
-void ffc__mumps_info(const ffc__mumps *m, int *ranks, double *mb_rank, double *mb_max)
-{
-    (void)m;
-    if (ranks) *ranks = 1;
-    if (mb_rank) *mb_rank = 0.0;
-    if (mb_max) *mb_max = 0.0;
 }
 
 #endif
