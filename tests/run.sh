@@ -83,6 +83,11 @@ case "outside" in *"$pat"*)
     if sh tests/outside.sh >"$log" 2>&1; then pass=$((pass + 1)); else fail=$((fail + 1)); report "tests/outside.sh"; fi ;;
 esac
 
+# every name README.md documents (plugin calls, settings, options, statistics, JSON fields) exists in the code
+case "docnames" in *"$pat"*)
+    if sh tests/docnames.sh >"$log" 2>&1; then pass=$((pass + 1)); else fail=$((fail + 1)); report "tests/docnames.sh"; fi ;;
+esac
+
 # the exercises: reference solutions right, common slips called wrong
 case "exercises" in *"$pat"*)
     sh tests/exercises.sh >"$log" 2>&1
