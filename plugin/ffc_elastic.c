@@ -39,34 +39,11 @@ static long find(const long c[], long n, long j)
  * V / 4) is exact. */
 static const int tet_edge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 
-static int assemble(long nv, const double X[], long nt, const long T[], long npe, long nn, const long E[],
-                    const double lam[], const double mu[], long cap, long Ki[], long Kj[], double Kv[], long *nnz,
-                    long *bad)
+/* The node graph of the tetrahedra's nodes E[nt*npe] (nn nodes): row i
+ * lists i and the nodes that share a tetrahedron with it, ascending, each
+ * once, in adj[rp[i] .. rp[i] + fill[i]) (rp[nn]: their count, returned) */
+static long node_graph(long nt, long npe, long nn, const long E[], long rp[], long adj[], long fill[])
 {
-    long dummy;
-    if (!bad) bad = &dummy;
-    *bad = -1;
-    if (!nnz || (nv > 0 && !X) || (nt > 0 && (!T || !E || !lam || !mu)) || (cap > 0 && (!Ki || !Kj || !Kv)))
-        return FFC_ERR_NULL;
-    *nnz = 0;
-    if (nv < 0 || nt < 0 || nn < 0 || cap < 0) return FFC_ERR_SIZE;
-    for (long i = 0; i < 3 * nv; i++)
-        if (!isfinite(X[i])) { *bad = i / 3; return FFC_ERR_NONFINITE; }
-    for (long t = 0; t < nt; t++) {
-        for (int a = 0; a < 4; a++)
-            if (T[4 * t + a] < 0 || T[4 * t + a] >= nv) { *bad = t; return FFC_ERR_INDEX; }
-        for (long a = 0; a < npe; a++)
-            if (E[npe * t + a] < 0 || E[npe * t + a] >= nn) { *bad = t; return FFC_ERR_INDEX; }
-        if (!isfinite(lam[t]) || !isfinite(mu[t])) { *bad = t; return FFC_ERR_NONFINITE; }
-    }
-    /* the node graph: row i lists i and the nodes that share a
-     * tetrahedron with it, ascending, each once */
-    long *rp = calloc((size_t)nn + 1, sizeof *rp), *adj = malloc((size_t)(npe * (npe - 1) * nt + nn + 1) * sizeof *adj);
-    long *fill = malloc(((size_t)nn + 1) * sizeof *fill);
-    if (!rp || !adj || !fill) {
-        free(rp); free(adj); free(fill);
-        return FFC_ERR_MEMORY;
-    }
     for (long i = 0; i < nn; i++) rp[i + 1] = 1;
     for (long t = 0; t < nt; t++)
         for (long a = 0; a < npe; a++) rp[E[npe * t + a] + 1] += npe - 1;
@@ -87,6 +64,101 @@ static int assemble(long nv, const double X[], long nt, const long T[], long npe
         nb += u;
     }
     rp[nn] = nb;
+    return nb;
+}
+
+/* Tetrahedron v[4]'s barycentric gradients g (g[0] = -(g[1] + g[2] +
+ * g[3])) and volume *V; FFC_ERR_DEGENERATE for a zero volume */
+static int tet_gradients(const double X[], const long v[4], double g[4][3], double *V)
+{
+    const double *x0 = X + 3 * v[0];
+    double J[3][3]; /* J[r][c] = (x_{c+1} - x0)[r] */
+    for (int c = 0; c < 3; c++)
+        for (int r = 0; r < 3; r++) J[r][c] = X[3 * v[c + 1] + r] - x0[r];
+    const double c00 = J[1][1] * J[2][2] - J[1][2] * J[2][1], c01 = J[1][2] * J[2][0] - J[1][0] * J[2][2],
+                 c02 = J[1][0] * J[2][1] - J[1][1] * J[2][0];
+    const double det = J[0][0] * c00 + J[0][1] * c01 + J[0][2] * c02;
+    /* zero volume: |det| at round-off's level of |e1| |e2| |e3| */
+    double el[3];
+    for (int c = 0; c < 3; c++) el[c] = sqrt(J[0][c] * J[0][c] + J[1][c] * J[1][c] + J[2][c] * J[2][c]);
+    if (!(fabs(det) > 1e-13 * el[0] * el[1] * el[2]) || !isfinite(det)) return FFC_ERR_DEGENERATE;
+    /* rows of J^-1 = cofactor columns / det */
+    g[1][0] = c00 / det; g[2][0] = c01 / det; g[3][0] = c02 / det;
+    g[1][1] = (J[0][2] * J[2][1] - J[0][1] * J[2][2]) / det;
+    g[2][1] = (J[0][0] * J[2][2] - J[0][2] * J[2][0]) / det;
+    g[3][1] = (J[0][1] * J[2][0] - J[0][0] * J[2][1]) / det;
+    g[1][2] = (J[0][1] * J[1][2] - J[0][2] * J[1][1]) / det;
+    g[2][2] = (J[0][2] * J[1][0] - J[0][0] * J[1][2]) / det;
+    g[3][2] = (J[0][0] * J[1][1] - J[0][1] * J[1][0]) / det;
+    for (int k = 0; k < 3; k++) g[0][k] = -(g[1][k] + g[2][k] + g[3][k]);
+    *V = fabs(det) / 6.0;
+    return FFC_OK;
+}
+
+/* Tetrahedron t's terms (its nodes nd[npe], gradients g, volume V) added
+ * into Kv at the places of the node graph (node_graph: rp, adj, fill) */
+static void add_tet(long npe, const long nd[], const double g[4][3], double V, double lam, double mu, const long rp[],
+                    const long adj[], const long fill[], double Kv[])
+{
+    const double qa = (5.0 + 3.0 * sqrt(5.0)) / 20.0, qb = (5.0 - sqrt(5.0)) / 20.0;
+    const int nq = npe == 4 ? 1 : 4;
+    for (int q = 0; q < nq; q++) {
+        double G[10][3], L[4];
+        for (int a = 0; a < 4; a++) L[a] = nq == 1 ? 0.25 : (a == q ? qa : qb);
+        if (npe == 4)
+            memcpy(G, g, 4 * sizeof g[0]);
+        else {
+            for (int a = 0; a < 4; a++)
+                for (int k = 0; k < 3; k++) G[a][k] = (4.0 * L[a] - 1.0) * g[a][k];
+            for (int e = 0; e < 6; e++) {
+                const int p = tet_edge[e][0], r = tet_edge[e][1];
+                for (int k = 0; k < 3; k++) G[4 + e][k] = 4.0 * (L[p] * g[r][k] + L[r] * g[p][k]);
+            }
+        }
+        const double w = V / nq, l = lam * w, m = mu * w;
+        for (long a = 0; a < npe; a++) {
+            const long i = nd[a];
+            for (long b = 0; b < npe; b++) {
+                const long e = find(adj + rp[i], fill[i], nd[b]);
+                const double gg = G[a][0] * G[b][0] + G[a][1] * G[b][1] + G[a][2] * G[b][2];
+                for (int ci = 0; ci < 3; ci++) {
+                    double *row = Kv + 9 * rp[i] + 3 * ci * fill[i] + 3 * e;
+                    for (int cj = 0; cj < 3; cj++)
+                        row[cj] += l * G[a][ci] * G[b][cj] + m * G[a][cj] * G[b][ci] + (ci == cj ? m * gg : 0.0);
+                }
+            }
+        }
+    }
+}
+
+static int assemble(long nv, const double X[], long nt, const long T[], long npe, long nn, const long E[],
+                    const double lam[], const double mu[], long cap, long Ki[], long Kj[], double Kv[], long *nnz,
+                    long *bad)
+{
+    long dummy;
+    if (!bad) bad = &dummy;
+    *bad = -1;
+    if (!nnz || (nv > 0 && !X) || (nt > 0 && (!T || !E || !lam || !mu)) || (cap > 0 && (!Ki || !Kj || !Kv)))
+        return FFC_ERR_NULL;
+    *nnz = 0;
+    if (nv < 0 || nt < 0 || nn < 0 || cap < 0) return FFC_ERR_SIZE;
+    for (long i = 0; i < 3 * nv; i++)
+        if (!isfinite(X[i])) { *bad = i / 3; return FFC_ERR_NONFINITE; }
+    for (long t = 0; t < nt; t++) {
+        for (int a = 0; a < 4; a++)
+            if (T[4 * t + a] < 0 || T[4 * t + a] >= nv) { *bad = t; return FFC_ERR_INDEX; }
+        for (long a = 0; a < npe; a++)
+            if (E[npe * t + a] < 0 || E[npe * t + a] >= nn) { *bad = t; return FFC_ERR_INDEX; }
+        if (!isfinite(lam[t]) || !isfinite(mu[t])) { *bad = t; return FFC_ERR_NONFINITE; }
+    }
+    /* the node graph (node_graph) */
+    long *rp = calloc((size_t)nn + 1, sizeof *rp), *adj = malloc((size_t)(npe * (npe - 1) * nt + nn + 1) * sizeof *adj);
+    long *fill = malloc(((size_t)nn + 1) * sizeof *fill);
+    if (!rp || !adj || !fill) {
+        free(rp); free(adj); free(fill);
+        return FFC_ERR_MEMORY;
+    }
+    const long nb = node_graph(nt, npe, nn, E, rp, adj, fill);
     *nnz = 9 * nb;
     if (cap < 9 * nb) {
         free(rp); free(adj); free(fill);
@@ -104,60 +176,11 @@ static int assemble(long nv, const double X[], long nt, const long T[], long npe
                     Kv[r0 + 3 * e + cj] = 0.0;
                 }
         }
-    const double qa = (5.0 + 3.0 * sqrt(5.0)) / 20.0, qb = (5.0 - sqrt(5.0)) / 20.0;
-    const int nq = npe == 4 ? 1 : 4;
     int st = FFC_OK;
     for (long t = 0; t < nt && !st; t++) {
-        const long *v = T + 4 * t, *nd = E + npe * t;
-        const double *x0 = X + 3 * v[0];
-        double J[3][3]; /* J[r][c] = (x_{c+1} - x0)[r] */
-        for (int c = 0; c < 3; c++)
-            for (int r = 0; r < 3; r++) J[r][c] = X[3 * v[c + 1] + r] - x0[r];
-        const double c00 = J[1][1] * J[2][2] - J[1][2] * J[2][1], c01 = J[1][2] * J[2][0] - J[1][0] * J[2][2],
-                     c02 = J[1][0] * J[2][1] - J[1][1] * J[2][0];
-        const double det = J[0][0] * c00 + J[0][1] * c01 + J[0][2] * c02;
-        /* zero volume: |det| at round-off's level of |e1| |e2| |e3| */
-        double el[3];
-        for (int c = 0; c < 3; c++) el[c] = sqrt(J[0][c] * J[0][c] + J[1][c] * J[1][c] + J[2][c] * J[2][c]);
-        if (!(fabs(det) > 1e-13 * el[0] * el[1] * el[2]) || !isfinite(det)) { *bad = t; st = FFC_ERR_DEGENERATE; break; }
-        /* rows of J^-1 = cofactor columns / det */
-        double g[4][3];
-        g[1][0] = c00 / det; g[2][0] = c01 / det; g[3][0] = c02 / det;
-        g[1][1] = (J[0][2] * J[2][1] - J[0][1] * J[2][2]) / det;
-        g[2][1] = (J[0][0] * J[2][2] - J[0][2] * J[2][0]) / det;
-        g[3][1] = (J[0][1] * J[2][0] - J[0][0] * J[2][1]) / det;
-        g[1][2] = (J[0][1] * J[1][2] - J[0][2] * J[1][1]) / det;
-        g[2][2] = (J[0][2] * J[1][0] - J[0][0] * J[1][2]) / det;
-        g[3][2] = (J[0][0] * J[1][1] - J[0][1] * J[1][0]) / det;
-        for (int k = 0; k < 3; k++) g[0][k] = -(g[1][k] + g[2][k] + g[3][k]);
-        const double V = fabs(det) / 6.0;
-        for (int q = 0; q < nq; q++) {
-            double G[10][3], L[4];
-            for (int a = 0; a < 4; a++) L[a] = nq == 1 ? 0.25 : (a == q ? qa : qb);
-            if (npe == 4)
-                memcpy(G, g, sizeof g);
-            else {
-                for (int a = 0; a < 4; a++)
-                    for (int k = 0; k < 3; k++) G[a][k] = (4.0 * L[a] - 1.0) * g[a][k];
-                for (int e = 0; e < 6; e++) {
-                    const int p = tet_edge[e][0], r = tet_edge[e][1];
-                    for (int k = 0; k < 3; k++) G[4 + e][k] = 4.0 * (L[p] * g[r][k] + L[r] * g[p][k]);
-                }
-            }
-            const double w = V / nq, l = lam[t] * w, m = mu[t] * w;
-            for (long a = 0; a < npe; a++) {
-                const long i = nd[a];
-                for (long b = 0; b < npe; b++) {
-                    const long e = find(adj + rp[i], fill[i], nd[b]);
-                    const double gg = G[a][0] * G[b][0] + G[a][1] * G[b][1] + G[a][2] * G[b][2];
-                    for (int ci = 0; ci < 3; ci++) {
-                        double *row = Kv + 9 * rp[i] + 3 * ci * fill[i] + 3 * e;
-                        for (int cj = 0; cj < 3; cj++)
-                            row[cj] += l * G[a][ci] * G[b][cj] + m * G[a][cj] * G[b][ci] + (ci == cj ? m * gg : 0.0);
-                    }
-                }
-            }
-        }
+        double g[4][3], V;
+        if (tet_gradients(X, T + 4 * t, g, &V)) { *bad = t; st = FFC_ERR_DEGENERATE; break; }
+        add_tet(npe, E + npe * t, (const double(*)[3])g, V, lam[t], mu[t], rp, adj, fill, Kv);
     }
     free(rp); free(adj); free(fill);
     return st;

@@ -1,6 +1,7 @@
 /* ffc_link_internal.h: types and functions shared by the contact-law
  * kernels (ffc_normal.c, ffc_friction.c, ffc_assemble.c, ffc_nodal.c,
- * ffc_augment.c, ffc_points.c); not part of the public interface. */
+ * ffc_nodal_assemble.c, ffc_augment.c, ffc_points.c); not part of the
+ * public interface. */
 #ifndef FFC_LINK_INTERNAL_H
 #define FFC_LINK_INTERNAL_H
 
@@ -116,12 +117,14 @@ int ffc__common_checks(const ffc_effects *fx, const ffc_pair *P, int qdeg, long 
                        const ffc_link links[], const ffc_law *law, const double lambda[],
                        const double lam_t[], double qw[16], int *nq, long *bad);
 
-/* ffc_nodal.c: the nodal law's work (prepare, free), its values at a linked
- * point, and its assembly */
+/* ffc_nodal.c: the nodal law's work (prepare, free), its multiplier shape
+ * values at a point xs of slave facet f (N[ns]), its values at a linked
+ * point; ffc_nodal_assemble.c: its assembly */
 void ffc__nodal_free(nodal_t *w);
 int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw[], int nq, long nl,
                        const ffc_link links[], const double lambda[], const double lam_t[], const ffc_law *law,
                        nodal_t *w, ffc_stats *stats, long *bad);
+void ffc__nodal_shape(const ffc_law *law, int ns, long f, const double xs[2], double N[FFC_MAXNODES]);
 double ffc__nodal_point_pressure(const ffc_pair *P, const ffc_link *lk, const nlink_t *e, const double tn[]);
 void ffc__nodal_point_traction(const ffc_pair *P, const ffc_link *lk, const nlink_t *e, const nfn_t T[],
                                double t[3], int *state);

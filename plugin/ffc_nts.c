@@ -292,6 +292,75 @@ static double slide_point(const ffc_nts_law *law, const ffc_nts_node *d, const d
  * |p| below nu_d mu (a node the chattering guard kept sliding) is raised
  * to nu_d mu in M. */
 
+/* The triplets of B and Bf (ffc_nts_rows): Bi, Bj, Bv, Fv[cap], nt of
+ * them written (may exceed cap: only cap are) */
+typedef struct {
+    long cap, *Bi, *Bj;
+    double *Bv, *Fv;
+    long nt;
+} trips_t;
+
+static void put(trips_t *o, long i, long j, double bv, double fv)
+{
+    if (o->nt < o->cap) {
+        o->Bi[o->nt] = i;
+        o->Bj[o->nt] = j;
+        o->Bv[o->nt] = bv;
+        o->Fv[o->nt] = fv;
+    }
+    o->nt++;
+}
+
+/* A sliding node's rows (see the Formulation above): its direction
+ * d->dir, the kinematic directions v[a], the multiplier block Cm[a] and
+ * the right-hand sides' extra[a] of its tangent rows a (t1's left out
+ * with skip1).  Returns 1, or 0 when p = 0 (the rows of a sticking node) */
+static int slide_rows(const ffc_nts_law *law, ffc_nts_node *d, const double w[3][3], int skip1, double v[3][3],
+                      double Cm[3][3], double extra[3])
+{
+    double p[3], mt[3], mu;
+    const double pn = slide_point(law, d, d->n, w, p, mt, &mu);
+    if (!(pn > 0)) return 0;
+    const double bound = law->nu_d * mu, rho = fmax(pn, bound);
+    const double mtn = sqrt(ffc__dot(mt, mt));
+    const double shrink = mtn > bound ? bound / mtn : 1.0;
+    double mb[3];
+    for (int i = 0; i < 3; i++) {
+        d->dir[i] = p[i] / pn;
+        mb[i] = shrink * mt[i];
+    }
+    for (int a = 1 + skip1; a < 3; a++) {
+        const double ta_mb = ffc__dot(w[a], mb);
+        for (int i = 0; i < 3; i++) v[a][i] = -(bound * w[a][i] - d->dir[i] * ta_mb) / rho;
+        for (int b = 1 + skip1; b < 3; b++) Cm[a][b] = (a == b) + ffc__dot(w[b], v[a]);
+        Cm[a][0] = law->nu_d * ffc__dot(w[a], d->dir);
+        extra[a] = ta_mb - bound * ffc__dot(w[a], d->dir);
+    }
+    return 1;
+}
+
+/* Row nr's entries on the dofs of a node and its master facet's nodes
+ * (dofn[4], coef[4]): sc coef_a v in B, sc coef_a w in Bf; a prescribed
+ * dof's moves into *rhs.  Returns how many were written. */
+static long row_entries(const ffc_pair *pair, const double fixed[], double sc, const long dofn[4],
+                        const double coef[4], const double v[3], const double w[3], long nr, double *rhs, trips_t *o)
+{
+    long used = 0;
+    for (int a = 0; a < 4; a++)
+        for (int i = 0; i < 3; i++) {
+            const double bv = coef[a] * v[i], fv = coef[a] * w[i];
+            if (bv == 0.0 && fv == 0.0) continue;
+            const long j = 3 * dofn[a] + i;
+            if (fixed && fixed[j] != 0) {
+                *rhs -= bv * pair->u[j];
+                continue;
+            }
+            put(o, nr, j, sc * bv, sc * fv);
+            used++;
+        }
+    return used;
+}
+
 int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixed[],
                  long nn, ffc_nts_node nodes[], long cap, long Bi[], long Bj[],
                  double Bv[], double Fv[], long ccap, double c[], long *ntrip, long *nrows)
@@ -304,7 +373,8 @@ int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixe
     if (ccap > 0 && !c) return FFC_ERR_NULL;
     const double sc = law->scale;
     const long ndof = 3 * pair->nv;
-    long nt = 0, nr = 0;
+    trips_t o = {cap, Bi, Bj, Bv, Fv, 0};
+    long nr = 0;
     for (long k = 0; k < nn; k++) {
         ffc_nts_node *d = &nodes[k];
         d->row = -1;
@@ -333,28 +403,7 @@ int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixe
         memcpy(v, w, sizeof v);
         int sliding = 0;
         double extra[3] = {0, 0, 0};   /* t_a . (mb - nu_d mu ph) */
-        if (nrow == 3 && d->state == FFC_NTS_SLIDE) {
-            double p[3], mt[3], mu;
-            const double pn = slide_point(law, d, d->n, w, p, mt, &mu);
-            if (pn > 0) {
-                sliding = 1;
-                const double bound = law->nu_d * mu, rho = fmax(pn, bound);
-                const double mtn = sqrt(ffc__dot(mt, mt));
-                const double shrink = mtn > bound ? bound / mtn : 1.0;
-                double mb[3];
-                for (int i = 0; i < 3; i++) {
-                    d->dir[i] = p[i] / pn;
-                    mb[i] = shrink * mt[i];
-                }
-                for (int a = 1 + skip1; a < 3; a++) {
-                    const double ta_mb = ffc__dot(w[a], mb);
-                    for (int i = 0; i < 3; i++) v[a][i] = -(bound * w[a][i] - d->dir[i] * ta_mb) / rho;
-                    for (int b = 1 + skip1; b < 3; b++) Cm[a][b] = (a == b) + ffc__dot(w[b], v[a]);
-                    Cm[a][0] = law->nu_d * ffc__dot(w[a], d->dir);
-                    extra[a] = ta_mb - bound * ffc__dot(w[a], d->dir);
-                }
-            }
-        }
+        if (nrow == 3 && d->state == FFC_NTS_SLIDE) sliding = slide_rows(law, d, w, skip1, v, Cm, extra);
         const long row0 = nr;
         const long ridx[3] = {row0, row0 + 1, row0 + 2 - skip1};   /* sliding rows' numbers */
         for (int r = 0; r < nrow; r++) {
@@ -368,37 +417,13 @@ int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixe
                 for (int i = 0; i < 3; i++) rhs += coef[a] * v[r][i] * uref[3 * dofn[a] + i];
             if (r == 0) rhs -= d->gap;
             if (sliding) rhs += extra[r];
-            long used = 0;
-            for (int a = 0; a < 4; a++)
-                for (int i = 0; i < 3; i++) {
-                    const double bv = coef[a] * v[r][i], fv = coef[a] * w[r][i];
-                    if (bv == 0.0 && fv == 0.0) continue;
-                    const long j = 3 * dofn[a] + i;
-                    if (fixed && fixed[j] != 0) {
-                        rhs -= bv * pair->u[j];
-                        continue;
-                    }
-                    if (nt < cap) {
-                        Bi[nt] = nr;
-                        Bj[nt] = j;
-                        Bv[nt] = sc * bv;
-                        Fv[nt] = sc * fv;
-                    }
-                    nt++;
-                    used++;
-                }
+            long used = row_entries(pair, fixed, sc, dofn, coef, v[r], w[r], nr, &rhs, &o);
             if (sliding && r > 0) {
                 /* the multiplier block: columns ndof + row of the node's
                  * normal and tangent multipliers */
                 for (int b = 0; b < 3; b++) {
                     if (Cm[r][b] == 0.0 || (b == 1 && skip1)) continue;
-                    if (nt < cap) {
-                        Bi[nt] = nr;
-                        Bj[nt] = ndof + ridx[b];
-                        Bv[nt] = sc * Cm[r][b];
-                        Fv[nt] = 0.0;
-                    }
-                    nt++;
+                    put(&o, nr, ndof + ridx[b], sc * Cm[r][b], 0.0);
                 }
                 used++;
             }
@@ -409,9 +434,9 @@ int ffc_nts_rows(const ffc_pair *pair, const ffc_nts_law *law, const double fixe
             nr++;
         }
     }
-    *ntrip = nt;
+    *ntrip = o.nt;
     *nrows = nr;
-    return (nt > cap || nr > ccap) ? FFC_ERR_CAPACITY : FFC_OK;
+    return (o.nt > cap || nr > ccap) ? FFC_ERR_CAPACITY : FFC_OK;
 }
 
 /* tangential part ft = f - fn nr of a node's contact force; returns |ft| */
@@ -434,17 +459,12 @@ long ffc_nts_nrows(long nn, const ffc_nts_node nodes[])
     return nr;
 }
 
-int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn,
-                   ffc_nts_node nodes[], ffc_nts_stats *st)
+/* the nodes' forces from the multipliers m[nrows] of the rows built last;
+ * *fmax_n the largest normal force, st->min_fn the smallest */
+static int node_forces(const ffc_nts_law *law, long nrows, const double m[], long nn, ffc_nts_node nodes[],
+                       ffc_nts_stats *st, double *fmax_n)
 {
-    int s = law_check(law);
-    if (s) return s;
-    if (!nodes || !st || (nrows > 0 && !m)) return FFC_ERR_NULL;
-    for (long k = 0; k < nrows; k++)
-        if (!isfinite(m[k])) return FFC_ERR_NONFINITE;
-    memset(st, 0, sizeof *st);
-    /* forces from the multipliers of the rows built last */
-    double fmax_n = 0.0;
+    *fmax_n = 0.0;
     int first = 1;
     for (long k = 0; k < nn; k++) {
         ffc_nts_node *d = &nodes[k];
@@ -461,10 +481,84 @@ int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn
             r++;
         }
         d->fn = ffc__dot(d->f, d->nr);
-        fmax_n = fmax(fmax_n, d->fn);
+        *fmax_n = fmax(*fmax_n, d->fn);
         st->min_fn = first ? d->fn : fmin(st->min_fn, d->fn);
         first = 0;
     }
+    return FFC_OK;
+}
+
+/* Node d's next state from its state, gap and forces (ft, ftn: its
+ * tangential force; fmax_n: the largest normal force), its new sliding
+ * direction into newdir (d->dir: unchanged); the largest sliding rows'
+ * residual into *slide_res */
+static int next_state(const ffc_nts_law *law, const ffc_nts_node *d, const double ft[3], double ftn, double fmax_n,
+                      double newdir[3], ffc_nts_stats *st, double *slide_res)
+{
+    const int old = d->state;
+    int next = old;
+    if (old == FFC_NTS_OPEN) {
+        /* a node that has changed state 2 max_flips times in this step
+         * stays open (a release / re-contact cycle the least-index
+         * rule cannot break: the geometry differs between the two
+         * states); its penetration shows in min_gap_open */
+        if (d->mf >= 0 && d->gap < -law->gtol && d->flips >= 2 * law->max_flips) st->locked++;
+        else if (d->mf >= 0 && d->gap < -law->gtol) {
+            /* a node arriving with tangential motion since u^n slides on
+             * along it: sticking would pull it back to where it was at u^n */
+            const double sn = sqrt(ffc__dot(d->slip, d->slip));
+            next = law->nu_s > 0 && !(sn > 1e-9 * sqrt(d->area)) ? FFC_NTS_STICK : FFC_NTS_SLIDE;
+            if (next == FFC_NTS_SLIDE && sn > 0)
+                for (int i = 0; i < 3; i++) newdir[i] = d->slip[i] / sn;
+        }
+    } else if (d->mf < 0) {
+        next = FFC_NTS_OPEN;       /* slid off the master surface */
+    } else if (d->row >= 0 && d->fn < -law->ftol * fmax_n) {
+        next = FFC_NTS_OPEN;       /* tension release */
+    } else if (old == FFC_NTS_STICK && d->row >= 0) {
+        /* past the cone by more than the solve's round-off: a node left
+         * on the cone's edge by sliding and then held (no slip) sticks
+         * with |F_t| = nu_s F_n to about 1e-11, and a test at 1e-12
+         * sent it back and forth between stick and slide */
+        if (ftn > law->nu_s * d->fn * (1 + 1e-9) && ftn > 0) {
+            next = FFC_NTS_SLIDE;
+            for (int i = 0; i < 3; i++) newdir[i] = -ft[i] / ftn;
+        }
+    } else if (old == FFC_NTS_SLIDE && law->nu_d > 0 && d->row >= 0) {
+        /* the projection form at the new iterate: q = scale p =
+         * -F_t + scale s; the node sticks when q is inside the disc
+         * |q| <= nu_d F_n, else slides along q (the sliding rows'
+         * residual |F_t + nu_d F_n q/|q|| measures how far the
+         * Newton iterate is from Coulomb's law) */
+        double p[3], mt[3], mu;
+        double w[3][3];
+        force_dirs(law, d, d->nr, w);
+        const double pn = slide_point(law, d, d->nr, w, p, mt, &mu);
+        if (!(pn > law->nu_d * mu) || pn == 0) next = FFC_NTS_STICK;
+        else {
+            double r[3];
+            for (int i = 0; i < 3; i++) {
+                newdir[i] = p[i] / pn;
+                r[i] = ft[i] + law->nu_d * d->fn * newdir[i];
+            }
+            *slide_res = fmax(*slide_res, sqrt(ffc__dot(r, r)));
+        }
+    }
+    return next;
+}
+
+int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn,
+                   ffc_nts_node nodes[], ffc_nts_stats *st)
+{
+    int s = law_check(law);
+    if (s) return s;
+    if (!nodes || !st || (nrows > 0 && !m)) return FFC_ERR_NULL;
+    for (long k = 0; k < nrows; k++)
+        if (!isfinite(m[k])) return FFC_ERR_NONFINITE;
+    memset(st, 0, sizeof *st);
+    /* forces from the multipliers of the rows built last */
+    double fmax_n;
+    if ((s = node_forces(law, nrows, m, nn, nodes, st, &fmax_n))) return s;
     /* chattering guard: once a node has changed state max_flips times in
      * this step, one change per update, the first node in order (the
      * least-index rule, which ends for the P-matrix complementarity
@@ -478,56 +572,9 @@ int ffc_nts_update(const ffc_nts_law *law, long nrows, const double m[], long nn
         const int old = d->state;
         double ft[3];
         const double ftn = tangential_force(d, ft);
-        int next = old;
         double newdir[3];
         memcpy(newdir, d->dir, sizeof newdir);
-        if (old == FFC_NTS_OPEN) {
-            /* a node that has changed state 2 max_flips times in this step
-             * stays open (a release / re-contact cycle the least-index
-             * rule cannot break: the geometry differs between the two
-             * states); its penetration shows in min_gap_open */
-            if (d->mf >= 0 && d->gap < -law->gtol && d->flips >= 2 * law->max_flips) st->locked++;
-            else if (d->mf >= 0 && d->gap < -law->gtol) {
-                /* a node arriving with tangential motion since u^n slides on
-                 * along it: sticking would pull it back to where it was at u^n */
-                const double sn = sqrt(ffc__dot(d->slip, d->slip));
-                next = law->nu_s > 0 && !(sn > 1e-9 * sqrt(d->area)) ? FFC_NTS_STICK : FFC_NTS_SLIDE;
-                if (next == FFC_NTS_SLIDE && sn > 0)
-                    for (int i = 0; i < 3; i++) newdir[i] = d->slip[i] / sn;
-            }
-        } else if (d->mf < 0) {
-            next = FFC_NTS_OPEN;       /* slid off the master surface */
-        } else if (d->row >= 0 && d->fn < -law->ftol * fmax_n) {
-            next = FFC_NTS_OPEN;       /* tension release */
-        } else if (old == FFC_NTS_STICK && d->row >= 0) {
-            /* past the cone by more than the solve's round-off: a node left
-             * on the cone's edge by sliding and then held (no slip) sticks
-             * with |F_t| = nu_s F_n to about 1e-11, and a test at 1e-12
-             * sent it back and forth between stick and slide */
-            if (ftn > law->nu_s * d->fn * (1 + 1e-9) && ftn > 0) {
-                next = FFC_NTS_SLIDE;
-                for (int i = 0; i < 3; i++) newdir[i] = -ft[i] / ftn;
-            }
-        } else if (old == FFC_NTS_SLIDE && law->nu_d > 0 && d->row >= 0) {
-            /* the projection form at the new iterate: q = scale p =
-             * -F_t + scale s; the node sticks when q is inside the disc
-             * |q| <= nu_d F_n, else slides along q (the sliding rows'
-             * residual |F_t + nu_d F_n q/|q|| measures how far the
-             * Newton iterate is from Coulomb's law) */
-            double p[3], mt[3], mu;
-            double w[3][3];
-            force_dirs(law, d, d->nr, w);
-            const double pn = slide_point(law, d, d->nr, w, p, mt, &mu);
-            if (!(pn > law->nu_d * mu) || pn == 0) next = FFC_NTS_STICK;
-            else {
-                double r[3];
-                for (int i = 0; i < 3; i++) {
-                    newdir[i] = p[i] / pn;
-                    r[i] = ft[i] + law->nu_d * d->fn * newdir[i];
-                }
-                slide_res = fmax(slide_res, sqrt(ffc__dot(r, r)));
-            }
-        }
+        int next = next_state(law, d, ft, ftn, fmax_n, newdir, st, &slide_res);
         if (next != old && one_at_a_time && st->changes > 0) {
             next = old;
             memcpy(newdir, d->dir, sizeof newdir);

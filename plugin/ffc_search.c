@@ -1,76 +1,17 @@
-/* ffc_search.c: contact search: a bounding-volume tree over the master
- * facets (Morton order, implicit binary heap), exact closest-facet queries
- * by branch and bound, edge adjacency, and slave-point links. */
+/* ffc_search.c: exact closest-facet queries on the tree by branch and bound, and slave-point links. */
 #include "ffc.h"
 #include "ffc_internal.h"
+#include "ffc_tree.h"
 
 #include <float.h>
 #include <math.h>
-#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define LEAF 2          /* facets per leaf (2 measured fastest of 2, 4, 8) */
-#define STACK 256
-
 typedef float v4f __attribute__((vector_size(16))); /* four boxes at once (GCC, Clang) */
-typedef int v4i __attribute__((vector_size(16)));       /* traversal stack (depth <= 64 levels, 2 per level) */
+typedef int v4i __attribute__((vector_size(16)));   /* their comparisons' masks */
 
-struct ffc_tree {
-    int nn;            /* nodes per facet: 3 or 6 */
-    long nf;           /* facets */
-    long nv;           /* node positions expected by refit */
-    long P;            /* leaves rounded up to a power of two */
-    long *F;           /* [nf*nn] connectivity (original facet order) */
-    long *slot2f;      /* [nf] tree slot -> facet */
-    long *f2slot;      /* [nf] facet -> tree slot */
-    double *hf;        /* [nf] longest edge of each facet, by facet (length) */
-    unsigned char *degen; /* [nf] by slot: 1 for a linear facet ffc_project refuses (no area), which no
-                             query takes */
-    double *fx;        /* [nf*nn*3] facet node positions, tree order (length) */
-    double *box;       /* [2P*6] node boxes lo[3], hi[3] (length) */
-    float *qb;         /* [P/2*24] the traversal's boxes: at 24 i those of node i's four grandchildren
-                          4i..4i+3, lo x, y, z then hi x, y, z, four values each, relative to qo in
-                          units of qscale, widened (see fill_quad_boxes; NULL when P < 4) */
-    int depth;         /* log2 P: the leaves' level (the root's is 0) */
-    double qo[3];      /* qb's origin: the root box's centre (length) */
-    double qscale;     /* the root box's largest half-width (length) */
-    int qfast;         /* 1: qb usable (qscale between 1e-30 and 1e30) */
-    long *nbr;         /* [nf*3] facet across edge e (vertices e, e+1), -1 on the rim */
-    unsigned char *vrim; /* [nf*3] 1 when vertex a lies on the rim of the surface */
-    double hmax;       /* longest facet edge (length) */
-};
-
-/* ------------------------------------------------------------ helpers */
-static double facet_h(int nn, const double *X)
-{
-    (void)nn;
-    return sqrt(ffc__facet_size2((const double(*)[3])X));
-}
-
-static void facet_box(int nn, const double *X, double b[6])
-{
-    for (int i = 0; i < 3; i++) { b[i] = INFINITY; b[3 + i] = -INFINITY; }
-    for (int a = 0; a < nn; a++)
-        for (int i = 0; i < 3; i++) {
-            double v = X[3 * a + i];
-            if (v < b[i]) b[i] = v;
-            if (v > b[3 + i]) b[3 + i] = v;
-        }
-    if (nn == 6) {
-        /* the quadratic patch lies in the convex hull of its Bezier control
-         * points: the vertices and, per edge (a, b) with mid-node m,
-         * 2 m - (a + b) / 2 */
-        static const int ed[3][3] = {{0, 1, 3}, {1, 2, 4}, {2, 0, 5}};
-        for (int e = 0; e < 3; e++)
-            for (int i = 0; i < 3; i++) {
-                double v = 2.0 * X[3 * ed[e][2] + i] - 0.5 * (X[3 * ed[e][0] + i] + X[3 * ed[e][1] + i]);
-                if (v < b[i]) b[i] = v;
-                if (v > b[3 + i]) b[3 + i] = v;
-            }
-    }
-}
-
+/* squared distance from p to the box b = lo[3], hi[3] */
 static double box_d2(const double b[6], const double p[3])
 {
     double d2 = 0.0;
@@ -79,76 +20,6 @@ static double box_d2(const double b[6], const double p[3])
         d2 += d * d;
     }
     return d2;
-}
-
-static uint64_t spread3(uint64_t v)
-{
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffULL;
-    v = (v | v << 16) & 0x1f0000ff0000ffULL;
-    v = (v | v << 8) & 0x100f00f00f00f00fULL;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-    v = (v | v << 2) & 0x1249249249249249ULL;
-    return v;
-}
-
-/* LSD radix sort of (key, idx) pairs on 8-bit digits */
-static int radix_sort(long n, uint64_t *key, long *idx)
-{
-    uint64_t *k2 = malloc((size_t)n * sizeof *k2);
-    long *i2 = malloc((size_t)n * sizeof *i2);
-    if (!k2 || !i2) { free(k2); free(i2); return FFC_ERR_MEMORY; }
-    for (int pass = 0; pass < 8; pass++) {
-        const int sh = 8 * pass;
-        long cnt[257] = {0};
-        for (long i = 0; i < n; i++) cnt[((key[i] >> sh) & 255) + 1]++;
-        if (cnt[1] == n) continue; /* every key has this digit 0 */
-        for (int d = 0; d < 256; d++) cnt[d + 1] += cnt[d];
-        for (long i = 0; i < n; i++) {
-            long o = cnt[(key[i] >> sh) & 255]++;
-            k2[o] = key[i];
-            i2[o] = idx[i];
-        }
-        memcpy(key, k2, (size_t)n * sizeof *key);
-        memcpy(idx, i2, (size_t)n * sizeof *idx);
-    }
-    free(k2);
-    free(i2);
-    return FFC_OK;
-}
-
-/* The traversal's boxes (qb) from the double ones, relative to the root
- * box's centre qo in units of its half-width qscale (values of order 1,
- * whatever the model's units: no float overflow or underflow), widened by
- * 8 FLT_EPSILON and rounded to float: for a query point with |p_i - qo_i|
- * <= 2 qscale the float distance (the box and (p - qo) / qscale rounded,
- * their differences rounded: each error below 4 FLT_EPSILON) is then below
- * the exact distance to the double box, so that the float test, scaled
- * back by qscale^2 (see lower_bound), never prunes a facet the double test
- * keeps. */
-static void fill_quad_boxes(ffc_tree *t)
-{
-    const double *r = t->box + 6;
-    double sc = 0.0;
-    for (int k = 0; k < 3; k++) {
-        t->qo[k] = 0.5 * (r[k] + r[3 + k]);
-        sc = fmax(sc, 0.5 * (r[3 + k] - r[k]));
-    }
-    if (!isfinite(sc)) sc = 0.0;
-    t->qscale = sc;
-    t->qfast = t->qb && sc >= 1e-30 && sc <= 1e30;
-    if (!t->qfast) return;
-    const double pad = 8.0 * FLT_EPSILON, inv = 1.0 / sc;
-    for (long i = 1; i < t->P / 2; i++) {
-        float *g = t->qb + 24 * i;
-        for (int j = 0; j < 4; j++) {
-            const double *b = t->box + 6 * (4 * i + j);
-            for (int k = 0; k < 3; k++) {
-                g[4 * k + j] = (float)((b[k] - t->qo[k]) * inv - pad);
-                g[12 + 4 * k + j] = (float)((b[3 + k] - t->qo[k]) * inv + pad);
-            }
-        }
-    }
 }
 
 /* A lower bound of the squared distance (length^2) from the float one d
@@ -160,201 +31,6 @@ static inline double lower_bound(const ffc_tree *t, float d)
     return ((double)d * (1.0 - 1e-5) - 1e-38) * t->qscale * t->qscale;
 }
 
-/* Facet coordinates into tree order and all boxes from the leaves up. */
-static int fill_geometry(ffc_tree *t, const double x[])
-{
-    const int nn = t->nn;
-    t->hmax = 0.0;
-    for (long s = 0; s < t->nf; s++) {
-        const long f = t->slot2f[s];
-        double *X = t->fx + s * nn * 3;
-        for (int a = 0; a < nn; a++)
-            for (int i = 0; i < 3; i++) {
-                double v = x[3 * t->F[f * nn + a] + i];
-                if (!isfinite(v)) return FFC_ERR_NONFINITE;
-                X[3 * a + i] = v;
-            }
-        double h = facet_h(nn, X);
-        t->hf[f] = h;
-        if (nn == 3) { /* ffc_project's test of a linear facet's area */
-            double e1[3], e2[3], c[3];
-            for (int i = 0; i < 3; i++) { e1[i] = X[3 + i] - X[i]; e2[i] = X[6 + i] - X[i]; }
-            ffc__cross(e1, e2, c);
-            t->degen[s] = ffc__degenerate(ffc__dot(c, c), ffc__facet_size2((const double(*)[3])X));
-        } else
-            t->degen[s] = 0;
-        if (h > t->hmax) t->hmax = h;
-    }
-    const long P = t->P;
-    for (long j = 0; j < P; j++) {
-        double *b = t->box + 6 * (P + j);
-        for (int i = 0; i < 3; i++) { b[i] = INFINITY; b[3 + i] = -INFINITY; }
-        for (long s = j * LEAF; s < (j + 1) * LEAF && s < t->nf; s++) {
-            double fb[6];
-            facet_box(nn, t->fx + s * nn * 3, fb);
-            for (int i = 0; i < 3; i++) {
-                b[i] = fmin(b[i], fb[i]);
-                b[3 + i] = fmax(b[3 + i], fb[3 + i]);
-            }
-        }
-    }
-    for (long i = P - 1; i >= 1; i--) {
-        double *b = t->box + 6 * i, *l = t->box + 12 * i, *r = l + 6;
-        for (int k = 0; k < 3; k++) {
-            b[k] = fmin(l[k], r[k]);
-            b[3 + k] = fmax(l[3 + k], r[3 + k]);
-        }
-    }
-    fill_quad_boxes(t);
-    return FFC_OK;
-}
-
-/* Edge neighbours through the node -> facet incidence (linear time). */
-static int build_adjacency(ffc_tree *t)
-{
-    const int nn = t->nn;
-    const long nf = t->nf, nv = t->nv;
-    long *start = calloc((size_t)nv + 1, sizeof *start);
-    long *inc = malloc((size_t)nf * 3 * sizeof *inc);
-    if (!start || !inc) { free(start); free(inc); return FFC_ERR_MEMORY; }
-    for (long f = 0; f < nf; f++)
-        for (int a = 0; a < 3; a++) start[t->F[f * nn + a] + 1]++;
-    for (long v = 0; v < nv; v++) start[v + 1] += start[v];
-    for (long f = 0; f < nf; f++)
-        for (int a = 0; a < 3; a++) inc[start[t->F[f * nn + a]]++] = f;
-    for (long v = nv; v > 0; v--) start[v] = start[v - 1];
-    start[0] = 0;
-    memset(t->vrim, 0, (size_t)nf * 3);
-    for (long f = 0; f < nf; f++)
-        for (int e = 0; e < 3; e++) {
-            const long a = t->F[f * nn + e], b = t->F[f * nn + (e + 1) % 3];
-            long g = -1;
-            for (long k = start[a]; k < start[a + 1] && g < 0; k++) {
-                long h = inc[k];
-                if (h == f) continue;
-                for (int c = 0; c < 3; c++)
-                    if (t->F[h * nn + c] == b) { g = h; break; }
-            }
-            t->nbr[f * 3 + e] = g;
-        }
-    /* rim vertices: on an edge without a neighbour, seen from every facet */
-    unsigned char *rim = calloc((size_t)nv, 1);
-    if (!rim) { free(start); free(inc); return FFC_ERR_MEMORY; }
-    for (long f = 0; f < nf; f++)
-        for (int e = 0; e < 3; e++)
-            if (t->nbr[f * 3 + e] < 0) {
-                rim[t->F[f * nn + e]] = 1;
-                rim[t->F[f * nn + (e + 1) % 3]] = 1;
-            }
-    for (long f = 0; f < nf; f++)
-        for (int a = 0; a < 3; a++) t->vrim[f * 3 + a] = rim[t->F[f * nn + a]];
-    free(rim);
-    free(start);
-    free(inc);
-    return FFC_OK;
-}
-
-void ffc_tree_free(ffc_tree *t)
-{
-    if (!t) return;
-    free(t->F);
-    free(t->slot2f);
-    free(t->f2slot);
-    free(t->hf);
-    free(t->degen);
-    free(t->fx);
-    free(t->box);
-    free(t->qb);
-    free(t->nbr);
-    free(t->vrim);
-    free(t);
-}
-
-long ffc_tree_bytes(const ffc_tree *t)
-{
-    if (!t) return 0;
-    return (long)sizeof *t + t->nf * (long)(t->nn * sizeof(long) + 2 * sizeof(long) + sizeof(double) +
-                                            t->nn * 3 * sizeof(double) + 3 * sizeof(long) + 4) +
-           2 * t->P * 6 * (long)sizeof(double) + (t->P >= 4 ? t->P / 2 * 24 * (long)sizeof(float) : 0);
-}
-
-int ffc_tree_build(int nn, long nf, const long F[], long nv, const double x[],
-                   ffc_tree **out)
-{
-    if (!out) return FFC_ERR_NULL;
-    *out = NULL;
-    if (nn != 3 && nn != 6) return FFC_ERR_NODES;
-    if (!F || !x) return FFC_ERR_NULL;
-    if (nf <= 0) return FFC_ERR_EMPTY;
-    if (nv <= 0) return FFC_ERR_SIZE;
-    for (long k = 0; k < nf * nn; k++)
-        if (F[k] < 0 || F[k] >= nv) return FFC_ERR_INDEX;
-
-    ffc_tree *t = calloc(1, sizeof *t);
-    if (!t) return FFC_ERR_MEMORY;
-    t->nn = nn;
-    t->nf = nf;
-    t->nv = nv;
-    long L = (nf + LEAF - 1) / LEAF, P = 1;
-    while (P < L) P *= 2;
-    t->P = P;
-    while ((1L << t->depth) < P) t->depth++;
-    t->F = malloc((size_t)nf * nn * sizeof *t->F);
-    t->slot2f = malloc((size_t)nf * sizeof *t->slot2f);
-    t->hf = malloc((size_t)nf * sizeof *t->hf);
-    t->degen = malloc((size_t)nf);
-    t->f2slot = malloc((size_t)nf * sizeof *t->f2slot);
-    t->fx = malloc((size_t)nf * nn * 3 * sizeof *t->fx);
-    t->box = malloc((size_t)2 * P * 6 * sizeof *t->box);
-    t->qb = P >= 4 ? malloc((size_t)P / 2 * 24 * sizeof *t->qb) : NULL;
-    t->nbr = malloc((size_t)nf * 3 * sizeof *t->nbr);
-    t->vrim = malloc((size_t)nf * 3);
-    uint64_t *key = malloc((size_t)nf * sizeof *key);
-    int st = FFC_ERR_MEMORY;
-    if (!t->F || !t->slot2f || !t->hf || !t->degen || !t->f2slot || !t->fx || !t->box || (P >= 4 && !t->qb) || !t->nbr || !t->vrim || !key) goto fail;
-    memcpy(t->F, F, (size_t)nf * nn * sizeof *F);
-
-    /* Morton keys of the facet centroids */
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (long f = 0; f < nf; f++)
-        for (int i = 0; i < 3; i++) {
-            double c = (x[3 * F[f * nn] + i] + x[3 * F[f * nn + 1] + i] + x[3 * F[f * nn + 2] + i]) / 3.0;
-            if (!isfinite(c)) { st = FFC_ERR_NONFINITE; goto fail; }
-            lo[i] = fmin(lo[i], c);
-            hi[i] = fmax(hi[i], c);
-        }
-    double span = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
-    double sc = span > 0 ? 2097151.0 / span : 0.0;
-    for (long f = 0; f < nf; f++) {
-        uint64_t k = 0;
-        for (int i = 0; i < 3; i++) {
-            double c = (x[3 * F[f * nn] + i] + x[3 * F[f * nn + 1] + i] + x[3 * F[f * nn + 2] + i]) / 3.0;
-            k |= spread3((uint64_t)((c - lo[i]) * sc)) << i;
-        }
-        key[f] = k;
-        t->slot2f[f] = f;
-    }
-    if ((st = radix_sort(nf, key, t->slot2f))) goto fail;
-    for (long k = 0; k < nf; k++) t->f2slot[t->slot2f[k]] = k;
-    free(key);
-    key = NULL;
-    if ((st = fill_geometry(t, x))) goto fail;
-    if ((st = build_adjacency(t))) goto fail;
-    *out = t;
-    return FFC_OK;
-fail:
-    free(key);
-    ffc_tree_free(t);
-    return st;
-}
-
-int ffc_tree_refit(ffc_tree *t, const double x[])
-{
-    if (!t || !x) return FFC_ERR_NULL;
-    return fill_geometry(t, x);
-}
-
-/* ------------------------------------------------------------- queries */
 /* Squared distance from p to the flat triangle (a, b, c) by its Voronoi
  * regions; *inside is 1 when the closest point is interior. */
 static double tri_d2(const double *a, const double *b, const double *c, const double p[3],
@@ -520,7 +196,7 @@ static void warm_start(const ffc_tree *t, const double p[3], double rmax, long w
 /* the facets of leaf j but the warm start's */
 static void consider_leaf(const ffc_tree *t, long j, const double p[3], cand_t *best, const long seen[4])
 {
-    for (long s = j * LEAF; s < (j + 1) * LEAF && s < t->nf; s++)
+    for (long s = j * FFC__LEAF; s < (j + 1) * FFC__LEAF && s < t->nf; s++)
         if (s != seen[0] && s != seen[1] && s != seen[2] && s != seen[3]) consider(t, s, p, best);
 }
 
@@ -558,8 +234,8 @@ static void nearest(const ffc_tree *t, const double p[3], double rmax, long warm
      * tests its four grandchildren's float boxes at once (qb) when p is
      * within their range; the root, when that number is odd, tests its two
      * children's double boxes (so do all nodes when qb is not usable) */
-    long stack[STACK];
-    double sd2[STACK];
+    long stack[FFC__STACK];
+    double sd2[FFC__STACK];
     int sp = 0;
     stack[sp] = 1;
     sd2[sp++] = box_d2(t->box + 6, p);
@@ -635,7 +311,7 @@ static int collect(const ffc_tree *t, const double rlo[3], const double rhi[3], 
         flo[k] = (float)((rlo[k] - t->qo[k]) * inv - pad);
         fhi[k] = (float)((rhi[k] - t->qo[k]) * inv + pad);
     }
-    long stack[STACK];
+    long stack[FFC__STACK];
     int sp = 0;
     const double *r = t->box + 6;
     if (r[0] <= rhi[0] && r[1] <= rhi[1] && r[2] <= rhi[2] && r[3] >= rlo[0] && r[4] >= rlo[1] && r[5] >= rlo[2])
@@ -914,147 +590,4 @@ int ffc_search_brute(const ffc_tree *t, int nns, long nfs, const long Fs[],
                      const ffc_search_opts *o, long cap, ffc_link links[])
 {
     return search_common(t, nns, nfs, Fs, nvs, xs_nodes, qdeg, o, cap, links, 1);
-}
-
-/* Facets (tree slots) whose boxes overlap b[6], into out[cap]; returns
- * their count (may exceed cap: only cap are written). */
-static long tree_overlap(const ffc_tree *t, const double b[6], long cap, long out[])
-{
-    long stack[STACK], n = 0;
-    int sp = 0;
-    stack[sp++] = 1;
-    while (sp > 0) {
-        const long i = stack[--sp];
-        const double *c = t->box + 6 * i;
-        if (c[0] > b[3] || c[1] > b[4] || c[2] > b[5] || c[3] < b[0] || c[4] < b[1] || c[5] < b[2]) continue;
-        if (i >= t->P) {
-            const long j = i - t->P;
-            for (long s = j * LEAF; s < (j + 1) * LEAF && s < t->nf; s++) {
-                const double *X = t->fx + s * t->nn * 3;
-                double fb[6];
-                facet_box(t->nn, X, fb);
-                if (fb[0] > b[3] || fb[1] > b[4] || fb[2] > b[5] || fb[3] < b[0] || fb[4] < b[1] || fb[5] < b[2])
-                    continue;
-                if (n < cap) out[n] = s;
-                n++;
-            }
-            continue;
-        }
-        stack[sp++] = 2 * i;
-        stack[sp++] = 2 * i + 1;
-    }
-    return n;
-}
-
-static void facet_normal(const double X[3][3], double n[3])
-{
-    const double a[3] = {X[1][0] - X[0][0], X[1][1] - X[0][1], X[1][2] - X[0][2]};
-    const double b[3] = {X[2][0] - X[0][0], X[2][1] - X[0][1], X[2][2] - X[0][2]};
-    ffc__cross(a, b, n);
-}
-
-#define MORTAR_PTS 96   /* points of one segment: <= 4 triangles x 12 (degree 6) */
-#define MORTAR_CAND 4096 /* master facets overlapping one slave facet's box */
-
-int ffc_mortar_pairs(const ffc_tree *t, long nfs, const long Fs[], long nvs, const double x[],
-                     const ffc_search_opts *o, long cap, long pairs[], long *need)
-{
-    long dummy;
-    if (!need) need = &dummy;
-    *need = 0;
-    if (!t || !Fs || !x || (cap > 0 && !pairs)) return FFC_ERR_NULL;
-    const int nn = t->nn; /* (3 or 6: ffc_tree_build) */
-    if (nfs <= 0) return FFC_ERR_EMPTY;
-    if (cap < 0 || t->nv > nvs) return FFC_ERR_SIZE;
-    ffc_search_opts def = ffc_search_defaults();
-    if (!o) o = &def;
-    if (!(o->capture_rel >= 0) || !(o->capture_abs >= 0) || !(o->edge_tol >= 0) || isinf(o->capture_rel) ||
-        isinf(o->capture_abs))
-        return FFC_ERR_VALUE;
-    for (long k = 0; k < nn * nfs; k++)
-        if (Fs[k] < 0 || Fs[k] >= nvs) return FFC_ERR_INDEX;
-    for (long k = 0; k < nn * t->nf; k++)
-        if (t->F[k] < 0 || t->F[k] >= nvs) return FFC_ERR_INDEX;
-    const double rmax = fmax(o->capture_abs, o->capture_rel * t->hmax);
-    long n = 0, cand[MORTAR_CAND];
-    double xi[MORTAR_PTS][2], w[MORTAR_PTS];
-    for (long f = 0; f < nfs; f++) {
-        double Xs[FFC_MAXNODES][3], ns[3], box[6]; /* (the segments: the vertex triangles) */
-        for (int a = 0; a < nn; a++)
-            for (int i = 0; i < 3; i++) {
-                Xs[a][i] = x[3 * Fs[nn * f + a] + i];
-                if (!isfinite(Xs[a][i])) return FFC_ERR_NONFINITE;
-            }
-        facet_normal(Xs, ns);
-        facet_box(nn, &Xs[0][0], box);
-        for (int i = 0; i < 3; i++) { box[i] -= rmax; box[3 + i] += rmax; }
-        const long nc = tree_overlap(t, box, MORTAR_CAND, cand);
-        if (nc > MORTAR_CAND) return FFC_ERR_SIZE;
-        long nf = 0;
-        int captured = 0;
-        for (long c = 0; c < nc; c++) {
-            const long mf = t->slot2f[cand[c]];
-            double Xm[FFC_MAXNODES][3], nm[3];
-            for (int a = 0; a < nn; a++)
-                for (int i = 0; i < 3; i++) {
-                    Xm[a][i] = x[3 * t->F[nn * mf + a] + i];
-                    if (!isfinite(Xm[a][i])) return FFC_ERR_NONFINITE;
-                }
-            facet_normal(Xm, nm);
-            if (!(ffc__dot(ns, nm) < 0)) continue; /* not facing */
-            double cov;
-            /* (degree 1: one point per segment triangle, enough for its centre) */
-            const int np = ffc_mortar_segment(1, (const double(*)[3])Xs, (const double(*)[3])Xm, MORTAR_PTS, xi, w, 0,
-                                              NULL, NULL, NULL, &cov);
-            if (np < 0) return np;
-            if (np == 0) continue;
-            /* capture: the distance from the segment's centre to the master plane */
-            double xc[2] = {0, 0}, ws = 0;
-            for (int q = 0; q < np; q++) {
-                xc[0] += w[q] * xi[q][0];
-                xc[1] += w[q] * xi[q][1];
-                ws += w[q];
-            }
-            xc[0] /= ws;
-            xc[1] /= ws;
-            double pc[3];
-            for (int i = 0; i < 3; i++)
-                pc[i] = Xs[0][i] + xc[0] * (Xs[1][i] - Xs[0][i]) + xc[1] * (Xs[2][i] - Xs[0][i]);
-            ffc_proj pr;
-            /* (the vertex triangle's plane: a capture decision, in closed form for 6-node facets too) */
-            int st = ffc__project_free(3, (const double(*)[3])Xm, pc, &pr);
-            if (st < 0) return st;
-            /* a facet within the capture distance of one master facet takes all those it faces and
-               overlaps: no facet is cut by the edge of the capture band (its dual basis would be
-               that of a part, and move with it) */
-            if (fabs(pr.gap) <= fmax(o->capture_abs, o->capture_rel * t->hf[mf])) captured = 1;
-            if (n + nf < cap) {
-                pairs[2 * (n + nf)] = f;
-                pairs[2 * (n + nf) + 1] = mf;
-            }
-            nf++;
-        }
-        if (captured) n += nf;
-    }
-    *need = n;
-    return n > cap ? FFC_ERR_CAPACITY : (n <= 2147483647L ? (int)n : FFC_ERR_SIZE);
-}
-
-int ffc_mortar_search(const ffc_tree *t, long nfs, const long Fs[], long nvs, const double x[], int qdeg,
-                      const ffc_search_opts *o, long cap, ffc_link links[], long *need)
-{
-    long dummy;
-    if (!need) need = &dummy;
-    *need = 0;
-    if (!t || !Fs || !x || (cap > 0 && !links)) return FFC_ERR_NULL;
-    if (ffc_quad_size(qdeg) < 0) return FFC_ERR_QUAD;
-    long np = 0;
-    int st = ffc_mortar_pairs(t, nfs, Fs, nvs, x, o, 0, NULL, &np);
-    if (st < 0 && st != FFC_ERR_CAPACITY) return st;
-    long *pairs = malloc((size_t)(2 * np + 2) * sizeof *pairs);
-    if (!pairs) return FFC_ERR_MEMORY;
-    st = ffc_mortar_pairs(t, nfs, Fs, nvs, x, o, np, pairs, &np);
-    if (st >= 0) st = ffc_mortar_links(t->nn, nfs, Fs, t->nf, t->F, nvs, x, qdeg, np, pairs, cap, links, need, 0, NULL, NULL);
-    free(pairs);
-    return st;
 }
