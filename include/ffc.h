@@ -57,6 +57,37 @@ typedef struct {
     char msg[200];     /* one line, no trailing newline ("" when none) */
 } ffc_error;
 
+/* ------------------------------------------------------ driver settings */
+/* The settings of the scene driver (scripts/scene.idp), held by the scene
+ * with their defaults and admissible values. */
+typedef enum { FFC_SET_INT = 0, FFC_SET_REAL = 1, FFC_SET_WORD = 2 } ffc_set_type;
+typedef struct {
+    const char *name;     /* as a script names it */
+    ffc_set_type type;
+    double def, lo, hi;   /* default and admissible range (FFC_SET_WORD: the default word's position) */
+    int open;             /* bit 1: lo excluded; bit 2: hi excluded */
+    const char *words;    /* FFC_SET_WORD: the admissible words, space-separated (NULL otherwise) */
+    const char *what;     /* what it sets (one line) */
+} ffc_setting;
+enum { FFC_NSETTINGS = 64 };  /* room for the settings (ffc_settings_count() <= this) */
+typedef struct {
+    double v[FFC_NSETTINGS];  /* by position in the table (a word: its position in the list) */
+} ffc_settings;
+int ffc_settings_count(void);
+/* the i-th setting's description (NULL past the end) */
+const ffc_setting *ffc_setting_at(int i);
+/* the position of a setting, or FFC_ERR_VALUE */
+int ffc_setting_find(const char *name);
+void ffc_settings_defaults(ffc_settings *s);
+/* A setting's value (a number; a word).  FFC_ERR_VALUE with err->msg
+ * naming the setting and the value for an unknown name, a value outside
+ * its range, a fraction for a whole number, an unknown word. */
+int ffc_settings_set(ffc_settings *s, const char *name, double v, ffc_error *err);
+int ffc_settings_set_word(ffc_settings *s, const char *name, const char *w, ffc_error *err);
+int ffc_settings_get(const ffc_settings *s, const char *name, double *v);
+/* a word setting's word into out[cap] (FFC_ERR_CAPACITY when it does not fit) */
+int ffc_settings_word(const ffc_settings *s, const char *name, char *out, long cap);
+
 /* ------------------------------------------------------------- effects */
 /* What a scene computes: kernels skip every term whose effect is off. */
 typedef struct {
@@ -648,6 +679,54 @@ int ffc_points_vtk(const char *path, long n, const double P[]);
 int ffc_write_columns(const char *path, const char *header, long n, int ncol,
                       const double A[], const double mask[]);
 
+/* ------------------------------------------------------------ line search */
+/* The line search of every Newton loop (the condensed Newton here, the
+ * scene driver's Newton in the script), by reverse communication: the
+ * caller evaluates where it is told and reports.
+ *
+ * Formulation: along a direction d from u, g(a) = r(u + a d) . d (g(0) <
+ * 0 for a descent direction).  Phase 1 (secant): the root of g on [0, a0]
+ * by regula falsi (Illinois: a bound kept twice has its g halved), the
+ * next point clamped to 5 % inside the bracket; a point is taken once
+ * |g| <= ls_tol |g(0)|, or where g < 0 at the upper bound, or at a = 1
+ * when the caller reports the full step taken (|r| at least halved with
+ * the contact state unchanged: a tangent that is not symmetric can make
+ * g(0) small against |r| |d|).  Phase 2 (guard): a step that makes |r|
+ * more than ten times |r(u)| is halved.  Each phase takes at most max_ls
+ * evaluations; a point the caller rejects (an inverted element) shortens
+ * the step (phase 1: to the middle of the bracket, as its new upper
+ * bound; phase 2: halved) and counts as an evaluation.  The point last
+ * evaluated is not evaluated again. */
+typedef struct {
+    int max_ls;        /* evaluations per phase (>= 0) */
+    double ls_tol;     /* phase 1's acceptance |g| <= ls_tol |g(0)| (0 < ls_tol < 1) */
+    double g0, rn;     /* g(0) and |r(u)| */
+    double a;          /* the point to evaluate, or the step taken at the end */
+    double at;         /* the point last evaluated (-1: none) */
+    double rt;         /* |r| there */
+    double alo, glo, ahi, ghi; /* phase 1's bracket and g at its ends */
+    int side;          /* the bound phase 1 moved last: -1 the lower, 1 the upper, 0 none */
+    int phase;         /* 1 secant, 2 guard, 0 done */
+    int guard;         /* 1: phase 2 follows phase 1 */
+    int it;            /* evaluations in the present phase (count) */
+    int waiting;       /* 1: a point was handed out and not yet reported */
+    long cuts;         /* steps shortened (count) */
+} ffc_linesearch;
+
+/* Starts a search from a0 (the largest admissible step, <= 1) with g(0)
+ * and |r(u)|; secant / guard: run phase 1 / phase 2.  FFC_ERR_VALUE for
+ * max_ls < 0 or ls_tol outside (0, 1). */
+int ffc_ls_start(ffc_linesearch *s, int max_ls, double ls_tol, double a0, double g0, double rn, int secant,
+                 int guard);
+/* 1: evaluate at *a, then ffc_ls_report (or ffc_ls_reject); 0: the search
+ * is over, take the step *a. */
+int ffc_ls_next(ffc_linesearch *s, double *a);
+/* The evaluation at the point handed out: g there, |r| there, and (at
+ * a = 1) whether the full step is taken on |r| alone. */
+int ffc_ls_report(ffc_linesearch *s, double g, double rnorm, int full_taken);
+/* The point handed out is not admissible (not evaluated). */
+int ffc_ls_reject(ffc_linesearch *s);
+
 /* ----------------------------------------------------------------- scenes */
 /* A contact scene: the nodes of one mesh (reference positions, and the
  * tetrahedra for the inversion check) and any number of contact pairs.
@@ -723,6 +802,36 @@ int ffc_pair_opts_check(const ffc_pair_opts *o);
 int ffc_scene_create(int nper, long nv, const double X[], long nt, const long T[],
                      const ffc_effects *effects, ffc_scene **out);
 void ffc_scene_free(ffc_scene *s);
+/* The scene's driver settings (see "driver settings"; never NULL for a
+ * scene): the script's driver reads and the user sets them by name. */
+ffc_settings *ffc_scene_settings(ffc_scene *s);
+/* The line search of the script driver's Newton loop, held by the scene
+ * (ffc_ls_*, its settings maxLineSearch and lsTol). */
+ffc_linesearch *ffc_scene_line_search(ffc_scene *s);
+
+/* What the scene's bulk operator is: its law and what the law declares,
+ * from which the driver chooses the solver path (a linear symmetric bulk:
+ * factorized once, the contact condensed; otherwise the whole tangent at
+ * every Newton iteration) and the contact kernels their geometry. */
+typedef enum {
+    FFC_BULK_LINEAR = 0,      /* linear elasticity (small strain) */
+    FFC_BULK_NEOHOOKEAN = 1,  /* compressible Neo-Hookean (finite deformation, total Lagrangian) */
+    FFC_BULK_USER = 2         /* the scene's own residual and tangent */
+} ffc_bulk_kind;
+typedef struct {
+    ffc_bulk_kind kind;
+    int linear;        /* 1: the internal force is linear in u (its tangent constant) */
+    int symmetric;     /* 1: the tangent is symmetric */
+    int finite;        /* 1: finite deformation: contact geometry in the current configuration
+                          (ffc_effects.finite_def) */
+} ffc_bulk_law;
+/* what a built-in law declares (FFC_BULK_USER: nonlinear, symmetric, small strain, until the scene says) */
+ffc_bulk_law ffc_bulk_law_of(ffc_bulk_kind kind);
+/* Sets the scene's bulk law (and its effects' finite_def).  FFC_ERR_VALUE
+ * for an unknown kind, a flag other than 0 or 1, a linear finite law, or a
+ * built-in law declared otherwise than it is. */
+int ffc_scene_set_law(ffc_scene *s, const ffc_bulk_law *law);
+int ffc_scene_law(const ffc_scene *s, ffc_bulk_law *law);
 int ffc_scene_npairs(const ffc_scene *s);
 int ffc_scene_effects(const ffc_scene *s, ffc_effects *fx);
 
@@ -1185,52 +1294,6 @@ ffc_newton_opts ffc_newton_defaults(void);
 int ffc_scene_newton(ffc_scene *s, const double r[], double u[], const ffc_newton_opts *o, ffc_newton_info *info,
                      long *bad);
 
-/* The line search of every Newton loop (the condensed Newton here, the
- * scene driver's Newton in the script), by reverse communication: the
- * caller evaluates where it is told and reports.
- *
- * Formulation: along a direction d from u, g(a) = r(u + a d) . d (g(0) <
- * 0 for a descent direction).  Phase 1 (secant): the root of g on [0, a0]
- * by regula falsi (Illinois: a bound kept twice has its g halved), the
- * next point clamped to 5 % inside the bracket; a point is taken once
- * |g| <= ls_tol |g(0)|, or where g < 0 at the upper bound, or at a = 1
- * when the caller reports the full step taken (|r| at least halved with
- * the contact state unchanged: a tangent that is not symmetric can make
- * g(0) small against |r| |d|).  Phase 2 (guard): a step that makes |r|
- * more than ten times |r(u)| is halved.  Each phase takes at most max_ls
- * evaluations; a point the caller rejects (an inverted element) shortens
- * the step (phase 1: to the middle of the bracket, as its new upper
- * bound; phase 2: halved) and counts as an evaluation.  The point last
- * evaluated is not evaluated again. */
-typedef struct {
-    int max_ls;        /* evaluations per phase (>= 0) */
-    double ls_tol;     /* phase 1's acceptance |g| <= ls_tol |g(0)| (0 < ls_tol < 1) */
-    double g0, rn;     /* g(0) and |r(u)| */
-    double a;          /* the point to evaluate, or the step taken at the end */
-    double at;         /* the point last evaluated (-1: none) */
-    double rt;         /* |r| there */
-    double alo, glo, ahi, ghi; /* phase 1's bracket and g at its ends */
-    int side;          /* the bound phase 1 moved last: -1 the lower, 1 the upper, 0 none */
-    int phase;         /* 1 secant, 2 guard, 0 done */
-    int guard;         /* 1: phase 2 follows phase 1 */
-    int it;            /* evaluations in the present phase (count) */
-    int waiting;       /* 1: a point was handed out and not yet reported */
-    long cuts;         /* steps shortened (count) */
-} ffc_linesearch;
-
-/* Starts a search from a0 (the largest admissible step, <= 1) with g(0)
- * and |r(u)|; secant / guard: run phase 1 / phase 2.  FFC_ERR_VALUE for
- * max_ls < 0 or ls_tol outside (0, 1). */
-int ffc_ls_start(ffc_linesearch *s, int max_ls, double ls_tol, double a0, double g0, double rn, int secant,
-                 int guard);
-/* 1: evaluate at *a, then ffc_ls_report (or ffc_ls_reject); 0: the search
- * is over, take the step *a. */
-int ffc_ls_next(ffc_linesearch *s, double *a);
-/* The evaluation at the point handed out: g there, |r| there, and (at
- * a = 1) whether the full step is taken on |r| alone. */
-int ffc_ls_report(ffc_linesearch *s, double g, double rnorm, int full_taken);
-/* The point handed out is not admissible (not evaluated). */
-int ffc_ls_reject(ffc_linesearch *s);
 
 /* ------------------------------------- node-to-surface Lagrange multipliers */
 /* Each slave node c is paired with the master facet (i, j, k) under it:

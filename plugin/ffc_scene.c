@@ -55,6 +55,9 @@ struct ffc_scene {
     ffc__bulk *bulk;   /* the bulk factorization (NULL: none set) */
     ffc_parallel par;  /* where the bulk matrix is factorized */
     double *fixed;     /* [nv*3] prescribed dofs (nonzero), or NULL: none given */
+    ffc_settings set;  /* the driver's settings */
+    ffc_bulk_law law;  /* what the bulk is (its kind, linear, symmetric, finite deformation) */
+    ffc_linesearch ls; /* the driver's Newton line search in progress */
 };
 
 ffc_pair_opts ffc_pair_defaults(void)
@@ -169,6 +172,8 @@ int ffc_scene_create(int nper, long nv, const double X[], long nt, const long T[
     memcpy(s->X, X, 3 * nv * sizeof *X);
     if (nt) memcpy(s->T, T, 4 * nt * sizeof *T);
     ffc__tet_volumes(nt, s->T, s->X, s->v0);
+    ffc_settings_defaults(&s->set);
+    s->law = ffc_bulk_law_of(effects->finite_def ? FFC_BULK_NEOHOOKEAN : FFC_BULK_LINEAR);
     *out = s;
     return FFC_OK;
 }
@@ -179,6 +184,42 @@ int ffc_scene_effects(const ffc_scene *s, ffc_effects *fx)
 {
     if (!s || !fx) return FFC_ERR_NULL;
     *fx = s->fx;
+    return FFC_OK;
+}
+
+ffc_settings *ffc_scene_settings(ffc_scene *s) { return s ? &s->set : NULL; }
+
+ffc_linesearch *ffc_scene_line_search(ffc_scene *s) { return s ? &s->ls : NULL; }
+
+ffc_bulk_law ffc_bulk_law_of(ffc_bulk_kind kind)
+{
+    switch (kind) {
+    case FFC_BULK_NEOHOOKEAN: return (ffc_bulk_law){FFC_BULK_NEOHOOKEAN, 0, 1, 1};
+    case FFC_BULK_USER: return (ffc_bulk_law){FFC_BULK_USER, 0, 1, 0};
+    default: return (ffc_bulk_law){FFC_BULK_LINEAR, 1, 1, 0};
+    }
+}
+
+int ffc_scene_set_law(ffc_scene *s, const ffc_bulk_law *law)
+{
+    if (!s || !law) return FFC_ERR_NULL;
+    if ((law->kind != FFC_BULK_LINEAR && law->kind != FFC_BULK_NEOHOOKEAN && law->kind != FFC_BULK_USER) ||
+        (law->linear != 0 && law->linear != 1) || (law->symmetric != 0 && law->symmetric != 1) ||
+        (law->finite != 0 && law->finite != 1) || (law->linear && law->finite))
+        return FFC_ERR_VALUE;
+    if (law->kind != FFC_BULK_USER) {   /* a built-in law is what it declares */
+        const ffc_bulk_law b = ffc_bulk_law_of(law->kind);
+        if (law->linear != b.linear || law->symmetric != b.symmetric || law->finite != b.finite) return FFC_ERR_VALUE;
+    }
+    s->law = *law;
+    s->fx.finite_def = law->finite;
+    return FFC_OK;
+}
+
+int ffc_scene_law(const ffc_scene *s, ffc_bulk_law *law)
+{
+    if (!s || !law) return FFC_ERR_NULL;
+    *law = s->law;
     return FFC_OK;
 }
 
