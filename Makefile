@@ -19,6 +19,12 @@ CLIBS   := -lumfpack -lcholmod -llapack -lblas -lm
 
 CSRC    := $(wildcard plugin/*.c)
 COBJ    := $(patsubst plugin/%.c,$(B)/obj/%.o,$(CSRC))
+# the FreeFEM shim: every plugin/*.cpp, one object each (the FreeFEM flags
+# without -shared), linked with the C library into ffcontact.so
+SHSRC   := $(wildcard plugin/*.cpp)
+SHOBJ   := $(patsubst plugin/%.cpp,$(B)/shim/%.o,$(SHSRC))
+SHHDRS  := include/ffc.h $(wildcard plugin/*.hpp)
+SHFLAGS  = $(filter-out -shared,$(FFFLAGS))
 CTESTS  := $(patsubst tests/c/%.c,$(B)/tests/%,$(wildcard tests/c/test_*.c))
 HDRS    := include/ffc.h $(wildcard plugin/*.h)
 
@@ -36,8 +42,12 @@ $(B)/libffc.a: $(COBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
-$(B)/ffcontact.so: plugin/ffcontact.cpp $(B)/libffc.a include/ffc.h
-	$(CXX) $(FFFLAGS) $< $(B)/libffc.a $(CLIBS) -o $@
+$(B)/shim/%.o: plugin/%.cpp $(SHHDRS)
+	@mkdir -p $(dir $@)
+	$(CXX) $(SHFLAGS) -c $< -o $@
+
+$(B)/ffcontact.so: $(SHOBJ) $(B)/libffc.a
+	$(CXX) $(FFFLAGS) $(SHOBJ) $(B)/libffc.a $(CLIBS) -o $@
 
 # the plugin for FreeFem++-mpi (scripts/ff -np N): the same sources with
 # -DFFC_MPI, parallel MUMPS for the bulk factorization when ranks > 1
@@ -52,8 +62,12 @@ $(MB)/obj/%.o: plugin/%.c $(HDRS)
 $(MB)/libffc.a: $(MOBJ)
 	@rm -f $@
 	ar rcs $@ $^
-$(MB)/ffcontact.so: plugin/ffcontact.cpp $(MB)/libffc.a include/ffc.h
-	$(MPICXX) $(FFFLAGS) -DFFC_MPI $< $(MB)/libffc.a -ldmumps -lscalapack-openmpi $(CLIBS) -o $@
+MSHOBJ  := $(patsubst plugin/%.cpp,$(MB)/shim/%.o,$(SHSRC))
+$(MB)/shim/%.o: plugin/%.cpp $(SHHDRS)
+	@mkdir -p $(dir $@)
+	$(MPICXX) $(SHFLAGS) -DFFC_MPI -c $< -o $@
+$(MB)/ffcontact.so: $(MSHOBJ) $(MB)/libffc.a
+	$(MPICXX) $(FFFLAGS) -DFFC_MPI $(MSHOBJ) $(MB)/libffc.a -ldmumps -lscalapack-openmpi $(CLIBS) -o $@
 $(MB)/tests/%: tests/mpi/%.c tests/c/ffc_test.h $(MB)/libffc.a
 	@mkdir -p $(dir $@)
 	$(MPICC) $(CFLAGS) -DFFC_MPI -Itests/c -Iplugin $< $(MB)/libffc.a -lcmocka -ldmumps -lscalapack-openmpi $(CLIBS) -o $@
