@@ -1229,6 +1229,18 @@ int ffc_scene_solve_info(const ffc_scene *s, ffc_solve_info *info);
  * systems (ffc_solve_info.shifted counts them); should K + S still be
  * singular, on the nodes the force reaches, then on the linked points'
  * facets.  The shifted dofs belong to C. */
+/* Why a load (or time) step of the scene driver stopped: solveScene()'s
+ * status (the script's constants ffcStep...), which its augmentation loop
+ * returns too. */
+typedef enum {
+    FFC_STEP_CONVERGED = 0,
+    FFC_STEP_AUGMENT = 1,   /* the augmentations (node-to-surface: the active set) did not settle */
+    FFC_STEP_NOPAIR = 5,    /* the scene has no contact pair */
+    FFC_STEP_MATERIAL = 6,  /* a region without its material (or density, in time) */
+    FFC_STEP_TIME = 7,      /* time steps asked of a scene that has none, or none of one that needs them */
+    FFC_STEP_SETTINGS = 8,  /* settings that do not go together (a solver or a method the bulk cannot take) */
+    FFC_STEP_NEWTON = 10    /* plus an ffc_newton_reason: Newton stopped short */
+} ffc_step_reason;
 enum { FFC_NEWTON_HIST = 64 };
 /* Why a Newton loop stopped: the condensed Newton's return value, and the
  * scene driver's Newton's (the same values in the script). */

@@ -107,7 +107,7 @@ struct Named {
     const char *name(int i) const { return names[i].name; }
 };
 
-const int MAXNAMED = 16;
+const int MAXNAMED = 48;
 
 // A script type's name in words (for messages).
 inline std::string type_word(aType t)
@@ -233,6 +233,8 @@ namespace ffc_shim {
 
 void need_finite(const char *fn, const char *name, KN<double> *x);
 SceneData &need_scene(const char *fn, FFScene *C);
+// the driver layers' calls and constants (ffc_shim_driver.cpp)
+void register_driver();
 const double *need_scene_u(const char *fn, SceneData &d, KN<double> *u, const char *arg = "u");
 void need_penalties(const char *fn, SceneData &d);
 void need_not_inverted(const char *fn, SceneData &d, const double *u);

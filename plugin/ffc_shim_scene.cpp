@@ -27,12 +27,13 @@ void need_pair_labels(const char *fn, KN<long> *sl, KN<long> *ml)
 
 ffc_effects need_effects(const char *fn, long bits, const char *arg = "argument 'opt': effects = opt[1]")
 {
-    if (bits < 0 || bits > 7) {
+    if (bits < 0 || bits > 3) {
         std::ostringstream s;
-        s << arg << " = " << bits << " is not a set of effects (bits: 1 friction, 2 dynamic, 4 finite deformation)";
+        s << arg << " = " << bits << " is not a set of effects (ffcFriction + ffcDynamic: 1 friction, 2 time"
+          << (bits >= 4 && bits <= 7 ? "; finite deformation is the bulk's: bulk = \"neohookean\")" : ")");
         fail(fn, s.str());
     }
-    ffc_effects e = {(bits & 1) ? 1 : 0, (bits & 2) ? 1 : 0, (bits & 4) ? 1 : 0};
+    ffc_effects e = {(bits & 1) ? 1 : 0, (bits & 2) ? 1 : 0, 0};
     return e;
 }
 
@@ -145,9 +146,43 @@ void need_lame(const char *fn, const SceneData &d, KN<double> *l1, KN<double> *l
     }
 }
 
-// ffcScene C(Th, effects = 0, order = 1, engine = "auto", shareLinks = 1)
+// ffcScene C(Th, effects = 0, order = 1, engine = "auto", shareLinks = 1, bulk = "elastic", bulkLinear = 0,
+// bulkSymmetric = 1, bulkFinite = 0)
 basicAC_F0::name_and_type scene_names[] = {
-    {"effects", &typeid(long)}, {"order", &typeid(long)}, {"engine", &typeid(string *)}, {"shareLinks", &typeid(long)}};
+    {"effects", &typeid(long)},       {"order", &typeid(long)},         {"engine", &typeid(string *)},
+    {"shareLinks", &typeid(long)},    {"bulk", &typeid(string *)},      {"bulkLinear", &typeid(long)},
+    {"bulkSymmetric", &typeid(long)}, {"bulkFinite", &typeid(long)}};
+
+namespace {
+
+// The bulk law the arguments bulk, bulkLinear, bulkSymmetric, bulkFinite
+// (arguments 4..7) declare: a built-in law is what it is (its flags may
+// not be given); the user's declares its own.
+ffc_bulk_law need_law(const char *fn, const Named &nm)
+{
+    const std::string kind = nm.str(4, "elastic");
+    ffc_bulk_law law;
+    if (kind == "elastic") law = ffc_bulk_law_of(FFC_BULK_LINEAR);
+    else if (kind == "neohookean") law = ffc_bulk_law_of(FFC_BULK_NEOHOOKEAN);
+    else if (kind == "user") law = ffc_bulk_law_of(FFC_BULK_USER);
+    else fail(fn, "argument 'bulk': \"" + kind + "\" is not \"elastic\", \"neohookean\" or \"user\"");
+    const char *flag[3] = {"bulkLinear", "bulkSymmetric", "bulkFinite"};
+    int *val[3] = {&law.linear, &law.symmetric, &law.finite};
+    for (int k = 0; k < 3; k++) {
+        if (!nm.has(5 + k)) continue;
+        if (law.kind != FFC_BULK_USER)
+            fail(fn, std::string("argument '") + flag[k] + "': only a bulk = \"user\" declares what it is (\"" + kind +
+                         "\" is " + (law.linear ? "linear, " : "nonlinear, ") + "symmetric, " +
+                         (law.finite ? "finite deformation" : "small strain") + ")");
+        const long v = nm.integer(5 + k, 0);
+        if (v != 0 && v != 1) fail(fn, std::string("argument '") + flag[k] + "': " + std::to_string(v) + " is not 0 or 1");
+        *val[k] = (int)v;
+    }
+    if (law.linear && law.finite) fail(fn, "arguments 'bulkLinear' and 'bulkFinite': a bulk of finite deformation is not linear");
+    return law;
+}
+
+} // namespace
 
 FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh)
 {
@@ -185,8 +220,11 @@ FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh)
         for (long k = 0; k < d->m.nt; k++)
             for (int a = 0; a < 4; a++) T[4 * k + a] = d->p2.node[10 * k + a];
     }
+    const ffc_bulk_law law = need_law(fn, nm);
     int st = ffc_scene_create(order == 2 ? 6 : 3, d->nn, X, d->m.nt, T.data(), &fx, &d->s);
     if (st) scene_error(fn, st, -1, "the scene");
+    st = ffc_scene_set_law(d->s, &law);
+    if (st) scene_error(fn, st, -1, "the scene's bulk");
     // several ranks (FreeFem++-mpi): the bulk factorized by CHOLMOD on every rank with the compliance
     // columns shared out ("auto", "replicated"), or by parallel MUMPS ("mumps")
     int rank, ranks, fcomm;

@@ -11,7 +11,7 @@ void init_scene()
     zzzfff->Add("ffcScene", atype<FFScene *>());
     typedef FFScene *S;
     typedef KN<double> *V;
-    TheOperators->Add("<-", named<S, S, pmesh3>("ffcScene", scene_names, 4, sceneInit));
+    TheOperators->Add("<-", named<S, S, pmesh3>("ffcScene", scene_names, 8, sceneInit));
     Global.Add("ffcAddPair", "(", named<long, S, KN<long> *, KN<long> *>("ffcAddPair", pair_names, PO_N, addPair));
     Global.Add("ffcAddPair", "(", named<long, S, long, long>("ffcAddPair", pair_names, PO_N, addPairL));
     Global.Add("ffcAddPair", "(", named<long, S, long, KN<long> *>("ffcAddPair", pair_names, PO_N, addPairLA));
@@ -51,6 +51,7 @@ void init_scene()
     Global.Add("ffcRows", "(", named<long, S, V, V, M, M, M, V>("ffcRows", nullptr, 0, sceneRows));
     Global.Add("ffcUpdate", "(", named<long, S, V, V>("ffcUpdate", nullptr, 0, sceneUpdate));
     Global.Add("ffcNTSForce", "(", named<long, S, V>("ffcNTSForce", nullptr, 0, sceneNtsForce));
+    register_driver();
 }
 
 } // namespace

@@ -2,15 +2,15 @@
 # docnames.sh: every name that README.md documents exists in the code.
 # Checked (no FreeFEM needed):
 #   - every plugin call written in backticks or in a code block, ffcName(,
-#     and every backticked bare ffcName: registered in plugin/ffcontact.cpp
-#     (Global.Add / the ffcScene type) or defined in scripts/*.idp;
+#     and every backticked bare ffcName: registered by the plugin (plugin/*.cpp:
+#     Global.Add, the ffcScene type, the reason constants) or defined in scripts/*.idp;
 #   - the first column of README's tables, by the table's first header:
 #       call              a plugin call (ffc...) or a scene-library function
-#       function, setting, global
-#                         a function or global defined in scripts/*.idp
-#       option            a named option of a plugin call (plugin/ffcontact.cpp)
-#       statistic         a name ffcStat accepts (plugin/ffc_scene.c)
-#       solver statistic  a name ffcSolverStat accepts (plugin/ffcontact.cpp)
+#       function, global  a function or global defined in scripts/*.idp
+#       setting           a driver setting (the table of plugin/ffc_settings.c)
+#       option            a named option of a plugin call (plugin/*.cpp)
+#       statistic         a name ffcStat accepts (plugin/ffc_scene*.c)
+#       solver statistic  a name ffcSolverStat accepts (plugin/*.cpp)
 #       field             a JSON field written by scripts/*.idp or scripts/*.edp
 #       scene defines     a name scripts/scene.idp uses
 #       case              a case study scripts/<name>.edp
@@ -28,13 +28,16 @@ trap 'rm -rf "$tmp"' EXIT
 
 # ---- the names the code defines, one list per kind
 # plugin calls: Global.Add("name", ...) and the type ffcScene
-grep -oE '(Global\.Add|zzzfff->Add)\("[A-Za-z0-9_]*"' plugin/ffcontact.cpp | sed 's/.*("//; s/"$//' | sort -u > "$tmp/calls"
+{ grep -ohE '(Global\.Add|zzzfff->Add)\("[A-Za-z0-9_]*"' plugin/*.cpp | sed 's/.*("//; s/"$//'
+  grep -ohE '\{"ffc[A-Za-z0-9_]*", FFC_' plugin/*.cpp | sed 's/{"//; s/".*//'; } | sort -u > "$tmp/calls"
 # named options of the plugin's calls: {"name", &typeid(...)}
-grep -o '{"[A-Za-z0-9_]*", *&typeid' plugin/ffcontact.cpp | sed 's/{"\([A-Za-z0-9_]*\)".*/\1/' | sort -u > "$tmp/options"
+grep -oh '{"[A-Za-z0-9_]*", *&typeid' plugin/*.cpp | sed 's/{"\([A-Za-z0-9_]*\)".*/\1/' | sort -u > "$tmp/options"
+# the driver's settings: the table of plugin/ffc_settings.c, {"name", FFC_SET_...
+grep -oh '{"[A-Za-z0-9_]*", FFC_SET_' plugin/*.c | sed 's/{"\([A-Za-z0-9_]*\)".*/\1/' | sort -u > "$tmp/settings"
 # ffcStat's names: the statistics table of plugin/ffc_scene.c, {"name", 0|1, ...}
-grep -o '{"[A-Za-z0-9_]*", [01], ' plugin/ffc_scene.c | sed 's/{"\([A-Za-z0-9_]*\)".*/\1/' | sort -u > "$tmp/stats"
+grep -oh '{"[A-Za-z0-9_]*", [01], ' plugin/ffc_scene*.c | sed 's/{"\([A-Za-z0-9_]*\)".*/\1/' | sort -u > "$tmp/stats"
 # ffcSolverStat's names: if (k == "name")
-grep -o 'k == "[A-Za-z0-9_]*"' plugin/ffcontact.cpp | sed 's/k == "\(.*\)"/\1/' | sort -u > "$tmp/solverstats"
+grep -oh 'k == "[A-Za-z0-9_]*"' plugin/*.cpp | sed 's/k == "\(.*\)"/\1/' | sort -u > "$tmp/solverstats"
 # JSON fields: jsonNum("key", ...), jsonStr("key", ...)
 cat scripts/*.idp scripts/*.edp | grep -oE 'json(Num|Str)\("[A-Za-z0-9_]*"' | sed 's/.*("\(.*\)"/\1/' | sort -u > "$tmp/fields"
 # scene-library functions, macros and globals: the top-level lines of scripts/*.idp
@@ -57,7 +60,7 @@ awk '
     }
 }' scripts/*.idp | sort -u > "$tmp/idp"
 cat "$tmp/calls" "$tmp/idp" | sort -u > "$tmp/anycall"
-for k in calls options stats solverstats fields idp; do
+for k in calls options settings stats solverstats fields idp; do
     [ -s "$tmp/$k" ] || { echo "docnames: found no $k in the code (has the code's layout changed?)"; exit 1; }
 done
 
@@ -104,7 +107,8 @@ code { calls($0); next }
         gsub(/^[ \t]+|[ \t]+$/, "", h)
         kind = ""
         if (h == "call") kind = "call"
-        else if (h == "function" || h == "setting" || h == "global") kind = "idp"
+        else if (h == "function" || h == "global") kind = "idp"
+        else if (h == "setting") kind = "setting"
         else if (h == "option") kind = "option"
         else if (h == "statistic") kind = "stat"
         else if (h == "solver statistic") kind = "solverstat"
@@ -129,6 +133,7 @@ while read -r kind name; do
         anycall) have anycall "$name"; ok=$? ;;
         call) case $name in ffc*) have calls "$name" ;; *) have idp "$name" ;; esac; ok=$? ;;
         idp) have idp "$name"; ok=$? ;;
+        setting) have settings "$name"; ok=$? ;;
         option) have options "$name"; ok=$? ;;
         stat) have stats "$name"; ok=$? ;;
         solverstat) have solverstats "$name"; ok=$? ;;
@@ -143,7 +148,7 @@ while read -r kind name; do
         echo "docnames: $kind '$name' in $(basename "$doc") is not in the code"
     fi
 done < "$tmp/used"
-for k in call idp option stat solverstat field scene case; do
+for k in call idp setting option stat solverstat field scene case; do
     grep -qx "table $k" "$tmp/used" || { echo "docnames: no table of kind '$k' in $(basename "$doc")"; missing=$((missing + 1)); }
 done
 [ "$checked" -ge 100 ] || { echo "docnames: only $checked names checked (expected 100 or more)"; missing=$((missing + 1)); }

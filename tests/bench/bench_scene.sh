@@ -36,8 +36,8 @@ row readme 0.3 "as in README"
 row mu0.1 0.1 "mu = 0.1" -e 's/mu = 0.3)/mu = 0.1)/'
 row mu0.6 0.6 "mu = 0.6" -e 's/mu = 0.3)/mu = 0.6)/'
 row shear2x 0.3 "shear increments of 0.003" -e 's/0.0015 \* i/0.003 * i/'
-row steps1 0.3 "1 step per solve" -e 's/^nsteps = 2;/nsteps = 1;/'
-row steps4 0.3 "4 steps per solve" -e 's/^nsteps = 2;/nsteps = 4;/'
+row steps1 0.3 "1 step per solve" -e 's/^ffcSet(C, nsteps = 2);/ffcSet(C, nsteps = 1);/'
+row steps4 0.3 "4 steps per solve" -e 's/^ffcSet(C, nsteps = 2);/ffcSet(C, nsteps = 4);/'
 row p3 0.3 "pressure 3" -e 's/pB = 1,/pB = 3,/'
 [ "$1" = quick ] || row fine 0.3 "mesh h 0.15 / 0.12" -e 's/h1 0.25 -setnumber h2 0.2", "h0.25-0.2"/h1 0.15 -setnumber h2 0.12", "h0.15-0.12"/'
 exit $fail
