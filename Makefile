@@ -20,7 +20,9 @@ CLIBS   := -lumfpack -lcholmod -llapack -lblas -lm
 CSRC    := $(wildcard plugin/*.c)
 COBJ    := $(patsubst plugin/%.c,$(B)/obj/%.o,$(CSRC))
 CTESTS  := $(patsubst tests/c/%.c,$(B)/tests/%,$(wildcard tests/c/test_*.c))
-HDRS    := include/ffc.h $(wildcard plugin/*.h)
+# the public header and its layers (include/ffc/*.h), then the kernels' internal ones
+PUBHDRS := include/ffc.h $(wildcard include/ffc/*.h)
+HDRS    := $(PUBHDRS) $(wildcard plugin/*.h)
 
 .PHONY: all lib plugin mpi mpitest setup test demo run ctest clean meshes
 all: lib plugin mpi meshes
@@ -36,7 +38,7 @@ $(B)/libffc.a: $(COBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
-$(B)/ffcontact.so: plugin/ffcontact.cpp $(B)/libffc.a include/ffc.h
+$(B)/ffcontact.so: plugin/ffcontact.cpp $(B)/libffc.a $(PUBHDRS)
 	$(CXX) $(FFFLAGS) $< $(B)/libffc.a $(CLIBS) -o $@
 
 # the plugin for FreeFem++-mpi (scripts/ff -np N): the same sources with
@@ -52,7 +54,7 @@ $(MB)/obj/%.o: plugin/%.c $(HDRS)
 $(MB)/libffc.a: $(MOBJ)
 	@rm -f $@
 	ar rcs $@ $^
-$(MB)/ffcontact.so: plugin/ffcontact.cpp $(MB)/libffc.a include/ffc.h
+$(MB)/ffcontact.so: plugin/ffcontact.cpp $(MB)/libffc.a $(PUBHDRS)
 	$(MPICXX) $(FFFLAGS) -DFFC_MPI $< $(MB)/libffc.a -ldmumps -lscalapack-openmpi $(CLIBS) -o $@
 $(MB)/tests/%: tests/mpi/%.c tests/c/ffc_test.h $(MB)/libffc.a
 	@mkdir -p $(dir $@)

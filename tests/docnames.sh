@@ -9,7 +9,7 @@
 #       function, setting, global
 #                         a function or global defined in scripts/*.idp
 #       option            a named option of a plugin call (plugin/ffcontact.cpp)
-#       statistic         a name ffcStat accepts (plugin/ffc_scene.c)
+#       statistic         a name ffcStat accepts (plugin/ffc_scene_out.c)
 #       solver statistic  a name ffcSolverStat accepts (plugin/ffcontact.cpp)
 #       field             a JSON field written by scripts/*.idp or scripts/*.edp
 #       scene defines     a name scripts/scene.idp uses
@@ -31,8 +31,8 @@ trap 'rm -rf "$tmp"' EXIT
 grep -oE '(Global\.Add|zzzfff->Add)\("[A-Za-z0-9_]*"' plugin/ffcontact.cpp | sed 's/.*("//; s/"$//' | sort -u > "$tmp/calls"
 # named options of the plugin's calls: {"name", &typeid(...)}
 grep -o '{"[A-Za-z0-9_]*", *&typeid' plugin/ffcontact.cpp | sed 's/{"\([A-Za-z0-9_]*\)".*/\1/' | sort -u > "$tmp/options"
-# ffcStat's names: the statistics table of plugin/ffc_scene.c, {"name", 0|1, ...}
-grep -o '{"[A-Za-z0-9_]*", [01], ' plugin/ffc_scene.c | sed 's/{"\([A-Za-z0-9_]*\)".*/\1/' | sort -u > "$tmp/stats"
+# ffcStat's names: the statistics table of plugin/ffc_scene_out.c, {"name", 0|1, ...}
+grep -o '{"[A-Za-z0-9_]*", [01], ' plugin/ffc_scene_out.c | sed 's/{"\([A-Za-z0-9_]*\)".*/\1/' | sort -u > "$tmp/stats"
 # ffcSolverStat's names: if (k == "name")
 grep -o 'k == "[A-Za-z0-9_]*"' plugin/ffcontact.cpp | sed 's/k == "\(.*\)"/\1/' | sort -u > "$tmp/solverstats"
 # JSON fields: jsonNum("key", ...), jsonStr("key", ...)
