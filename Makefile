@@ -23,10 +23,12 @@ COBJ    := $(patsubst plugin/%.c,$(B)/obj/%.o,$(CSRC))
 # without -shared), linked with the C library into ffcontact.so
 SHSRC   := $(wildcard plugin/*.cpp)
 SHOBJ   := $(patsubst plugin/%.cpp,$(B)/shim/%.o,$(SHSRC))
-SHHDRS  := include/ffc.h $(wildcard plugin/*.hpp)
+SHHDRS  = $(PUBHDRS) $(wildcard plugin/*.hpp)
 SHFLAGS  = $(filter-out -shared,$(FFFLAGS))
 CTESTS  := $(patsubst tests/c/%.c,$(B)/tests/%,$(wildcard tests/c/test_*.c))
-HDRS    := include/ffc.h $(wildcard plugin/*.h)
+# the public header and its layers (include/ffc/*.h), then the kernels' internal ones
+PUBHDRS := include/ffc.h $(wildcard include/ffc/*.h)
+HDRS    := $(PUBHDRS) $(wildcard plugin/*.h)
 
 .PHONY: all lib plugin mpi mpitest setup test demo run ctest clean meshes
 all: lib plugin mpi meshes

@@ -1,6 +1,6 @@
 /* ffc_linesearch.c: the Newton loops' line search (regula falsi on
  * g(a) = r(u + a d) . d, then a guard against growth of |r|), by reverse
- * communication (see ffc.h). */
+ * communication (see ffc/newton.h). */
 #include <math.h>
 
 #include "ffc.h"

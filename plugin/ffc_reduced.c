@@ -1,7 +1,7 @@
 /* ffc_reduced.c: the contact-reduced linear solve of a small-strain step:
  * the compliance G of the contact dofs, grown column by column, and the
  * dense system (I + G Kcc) x_C = y_C that replaces a factorization of
- * K + Kc (see ffc.h). */
+ * K + Kc (see ffc/bulk.h). */
 #include "ffc.h"
 #include "ffc_internal.h"
 

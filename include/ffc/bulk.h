@@ -1,0 +1,134 @@
+/* ffc/bulk.h: the bulk: contact-reduced solve, sparse triplets, elasticity, mass redistribution, P2 tetrahedra. */
+#ifndef FFC_API_BULK_H
+#define FFC_API_BULK_H
+
+#include "status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------- contact-reduced linear solve */
+/* Formulation.  In a small-strain quasi-static scene the bulk stiffness K
+ * (n x n, symmetric, Dirichlet rows included) does not change: it is
+ * factorized once, and the contact tangent Kc, which touches only the m
+ * contact dofs C (Kc = P Kcc P^T, P the n x m selection), is handled on
+ * those dofs.  With G = P^T K^-1 P (m x m, the compliance of the contact
+ * dofs; column j is K^-1 e_dof[j] at the contact dofs, one back-solve) and
+ * y = K^-1 b:
+ *     (K + P Kcc P^T) x = b   <=>   (I + G Kcc) x_C = y_C,
+ *                                   x = y - K^-1 P (Kcc x_C),
+ * so a Newton iteration costs two back-solves with K and one dense m x m
+ * solve instead of a factorization of K + Kc.  G only grows: a dof that
+ * Kc touches for the first time adds one column (and, K being symmetric,
+ * the same row).  Kcc may be non-symmetric (friction).  A body held only
+ * by contact makes K singular: then K + S is factorized instead, S = diag(sh)
+ * non-zero only on contact dofs, and Kcc - S_CC takes Kcc's place (exact:
+ * K + Kc = (K + S) + P (Kcc - S_CC) P^T). */
+
+/* The dofs that the triplets (Ti, Tj, Tv)[nt] of an n x n matrix touch
+ * with a non-zero value (row or column) and that are not among dof[m]:
+ * written to out[cap] in ascending order, *nout their count (or the count
+ * needed, with FFC_ERR_CAPACITY).  pos[n] is work space (on return all -1).
+ * FFC_ERR_INDEX when an index is outside [0, n). */
+int ffc_reduced_missing(long n, long m, const long dof[], long nt, const long Ti[], const long Tj[],
+                        const double Tv[], long cap, long out[], long *nout, long pos[]);
+
+/* Appends the dof j to dof[m] (capacity ld) and the column x[n] = K^-1 e_j
+ * to G (column-major, leading dimension ld): G(i, m) = G(m, i) = x[dof[i]]
+ * for i < m, G(m, m) = x[j].  FFC_ERR_CAPACITY when m >= ld, FFC_ERR_INDEX
+ * for j outside [0, n) or already in dof[], FFC_ERR_NONFINITE for a
+ * non-finite x at the contact dofs. */
+int ffc_reduced_add(long n, long ld, long m, long dof[], double G[], const double x[], long j);
+
+/* Solves (I + G Kcc') x_C = y_C with Kcc' = Kcc - diag(sh) at the contact
+ * dofs (sh[n] may be NULL: no shift), Kcc from the triplets (Ti, Tj,
+ * Tv)[nt] (global dofs, each in dof[m]), and writes w[n] = P (Kcc' x_C)
+ * (zero off the contact dofs); xc[m] receives x_C.  Work: A[m*m], piv[m],
+ * pos[n] (on return all -1).  FFC_ERR_INDEX when a triplet or a non-zero
+ * shift touches a dof outside dof[] (call ffc_reduced_missing / _add
+ * first), FFC_ERR_SINGULAR on a zero pivot, FFC_ERR_NONFINITE for
+ * non-finite input. */
+int ffc_reduced_solve(long n, long ld, long m, const long dof[], const double G[], long nt, const long Ti[],
+                      const long Tj[], const double Tv[], const double sh[], const double y[], double xc[],
+                      double w[], double A[], long piv[], long pos[]);
+
+/* -------------------------------------------------------- sparse triplets */
+/* Sums the duplicates of the triplets (Ti, Tj, Tv)[nt] of an n x n matrix
+ * into (Ci, Cj, Cv) (capacity nt: the sum never has more), grouped by row
+ * in ascending order, columns within a row in order of first appearance;
+ * returns the number of distinct entries.  Work: rp[n + 1], w[n].  The
+ * contact tangent of the nodal law repeats entries about 12 times (Hertz):
+ * summing them here hands FreeFEM a matrix, not a list to hash.
+ * FFC_ERR_INDEX for an index outside [0, n). */
+long ffc_triplets_sum(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long Ci[],
+                      long Cj[], double Cv[], long rp[], long w[]);
+
+/* ------------------------------------------------ linear elasticity */
+/* The stiffness matrix of isotropic linear elasticity on linear
+ * tetrahedra: int lambda div u div v + 2 mu eps(u) : eps(v), for the
+ * displacement field [P1, P1, P1] whose dof 3 i + c is component c of
+ * vertex i (nv vertices X[3 nv]; nt tetrahedra T[4 nt]; Lame's lambda
+ * lam[nt] and mu mu[nt], constant per tetrahedron).  Its distinct entries
+ * go to (Ki, Kj, Kv)[cap], *nnz of them: row by row (ascending), columns
+ * ascending within a row, both triangles (the matrix is symmetric); the
+ * count needed is 9 x (vertex pairs that share a tetrahedron, each vertex
+ * with itself included), *nnz with FFC_ERR_CAPACITY.  FFC_ERR_INDEX for a
+ * vertex index outside [0, nv), FFC_ERR_NONFINITE for a coordinate (*bad =
+ * the vertex) or a Lame constant (*bad = the tetrahedron) that is NaN or
+ * Inf, FFC_ERR_DEGENERATE for a tetrahedron of zero volume (|det J| <=
+ * 1e-13 |e1| |e2| |e3|, J = [e1 e2 e3] its edges from the first vertex;
+ * *bad = it). */
+int ffc_elastic_p1(long nv, const double X[], long nt, const long T[], const double lam[], const double mu[],
+                   long cap, long Ki[], long Kj[], double Kv[], long *nnz, long *bad);
+
+/* The same on quadratic tetrahedra ([P2, P2, P2], straight-sided: the
+ * geometry from the vertices X, T): nn nodes, node[10 nt] each
+ * tetrahedron's nodes in FreeFEM's order (ffc_p2_number: the vertices,
+ * then the edges 01 02 03 12 13 23), dof 3 i + c of node i; the count
+ * needed is 9 x (node pairs that share a tetrahedron, each node with
+ * itself); FFC_ERR_INDEX also for a node outside [0, nn). */
+int ffc_elastic_p2(long nv, const double X[], long nt, const long T[], long nn, const long node[],
+                   const double lam[], const double mu[], long cap, long Ki[], long Kj[], double Kv[], long *nnz,
+                   long *bad);
+
+/* ------------------------------------------------ mass redistribution */
+/* The interpolation T (n x n) of a redistributed mass M_red = T' M T for
+ * contact dynamics: row i is e_i for a dof off the contact surfaces
+ * (spread[i] == 0); a dof on them (spread[i] != 0) takes the mean of the
+ * dofs off the surfaces that the mass matrix (triplets Mi, Mj, Mv [nm],
+ * duplicates allowed) couples to it, weighted by |M_ij|.  Rows sum to 1
+ * (total mass and linear momentum kept), T T = T, and M_red has no mass on
+ * the surface dofs, which then follow the quasi-static balance of elastic
+ * and contact forces: no contact chatter, and the trapezoidal rule keeps
+ * the energy in persistent contact.  A surface dof coupled to no dof off
+ * the surfaces (a body one element thick) keeps its row e_i: *kept counts
+ * them.  T goes to the triplets (Ti, Tj, Tv)[cap], *nt of them (the count
+ * needed, with FFC_ERR_CAPACITY; at most n + nm).  Work: wsum[n]. */
+int ffc_mass_spread(long n, long nm, const long Mi[], const long Mj[], const double Mv[],
+                    const double spread[], long cap, long Ti[], long Tj[], double Tv[], long *nt,
+                    long *kept, double wsum[]);
+
+/* ------------------------------------------------- quadratic tetrahedra */
+/* Numbers the nodes of P2 tetrahedra T[nt*4] (nv vertices) as FreeFEM
+ * numbers scalar P2 degrees of freedom: element by element, the 4 vertices
+ * then the edges (0,1), (0,2), (0,3), (1,2), (1,3), (2,3), each node at its
+ * first appearance.  node[nt*10] receives the nodes of each element,
+ * *nnodes their count.  (For [P2,P2,P2] the dof of node i, component c is
+ * 3 i + c.) */
+int ffc_p2_number(long nt, const long T[], long nv, long node[], long *nnodes);
+
+/* Positions X2[nnodes*3] of the P2 nodes of straight-sided tetrahedra:
+ * the vertices and the edge midpoints of X[nv*3]. */
+int ffc_p2_positions(long nt, const long T[], const long node[], const double X[],
+                     long nnodes, double X2[]);
+
+/* The 6 nodes of the face (face[3], vertex numbers, in facet order) of the
+ * tetrahedron T4 with nodes node10: the 3 vertex nodes, then the mid-edge
+ * nodes of edges 0-1, 1-2, 2-0 of the face. */
+int ffc_p2_face(const long T4[4], const long node10[10], const long face[3], long out[6]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* FFC_API_BULK_H */

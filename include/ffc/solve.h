@@ -1,0 +1,212 @@
+/* ffc/solve.h: a scene's bulk factorization, engines, parallel and full solvers, the condensed solve and Newton. */
+#ifndef FFC_API_SOLVE_H
+#define FFC_API_SOLVE_H
+
+#include "status.h"
+#include "newton.h"
+#include "scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* --------------------------------------------------- bulk factorization */
+/* Bulk factorization of a small-strain scene.  The scene keeps the bulk
+ * stiffness K (n = 3 nv dofs, node-major: dof 3 i + c is component c of
+ * node i; symmetric positive definite once the Dirichlet rows carry a
+ * large diagonal, FreeFEM's tgv) and solves each Newton system
+ * (K + Kc) x = b on the contact dofs (the contact-reduced solve below):
+ * K + S is factorized (CHOLMOD) at the first solve, S = s I on the dofs of
+ * that first contact tangent (s the mean diagonal of the rows that are not
+ * Dirichlet rows: a body that only contact holds makes K singular); the
+ * compliance G of the contact dofs grows by block solves (pruned to
+ * the rows read) when Kc touches new dofs; each solve is two back-solves and a dense LU of
+ * I + G Kcc (m x m, LAPACK), then at most two steps of iterative
+ * refinement.  Dirichlet rows are those whose diagonal is at least 1e12
+ * times the median diagonal: their value is b_i / K_ii (the tgv rows'
+ * solution to within 1/tgv) and they are eliminated before the
+ * factorization, so that CHOLMOD's condition estimate shows a singular K
+ * (below 1e-12: refused). */
+typedef struct {
+    long factorizations; /* of K + S (count) */
+    long columns;        /* compliance columns computed (count) */
+    long solves;         /* ffc_scene_solve calls (count) */
+    long backsolves;     /* right-hand sides solved with the factor (count) */
+    long refinements;    /* iterative-refinement steps (count) */
+    long kept;           /* condensed Newton directions solved by GMRES preconditioned with the last dense LU
+                            of the same support (count) */
+    long m;              /* contact dofs in the compliance (count) */
+    double shift;        /* s (force/length; 0: no shift) */
+    long shifted;        /* dofs that carry the shift (count; 0: none) */
+    double rcond;        /* CHOLMOD's estimate of the factor's reciprocal condition (1; 0 with MUMPS,
+                            which refuses negative pivots and those below 1e-12 of K's norm instead) */
+    int ranks;           /* the ranks that share the factorization (1: CHOLMOD) */
+    double factor_mb;    /* MUMPS: this rank's factorization memory (MB; 0 with CHOLMOD) */
+    double factor_mb_max; /* MUMPS: the largest rank's (MB) */
+    double residual;     /* last solve: the free rows' residual / (|b_free| + max free
+                            diagonal |x_free|), or a Dirichlet row's residual / (its
+                            diagonal |x|_inf), the larger (1) */
+    double t_factor;     /* wall time of the factorizations (seconds) */
+    double t_columns;    /* wall time of the compliance columns (seconds) */
+    long reused;         /* condensed Newton calls whose first solve was the last call's closing one (count) */
+    int factor_ranks;    /* CHOLMOD on every rank: the ranks of this machine that made the factor together, each
+                            then holding all of it (1: this rank made its own) */
+    int factor_split;    /* of them, the ranks that made the last factorization's subtrees, each its share,
+                            before the supernodes above them (1: one rank made it all) */
+    double t_backsolves; /* wall time of the single back-solves (seconds) */
+    long split_solves;   /* of those, the ones the machine's ranks split by the factor's subtrees (count) */
+} ffc_solve_info;
+
+/* Sets K from its triplets (Ti, Tj, Tv)[nt] (both triangles; duplicates
+ * summed), n = 3 nv; any factorization and compliance of an earlier K are
+ * dropped.  mmax: contact dofs a solve takes at most (its dense LU grows
+ * as m^3).  FFC_ERR_INDEX / FFC_ERR_NONFINITE (*bad = the triplet),
+ * FFC_ERR_SINGULAR for a diagonal entry that is not positive (*bad = the
+ * dof), FFC_ERR_SIZE when n is not 3 nv. */
+int ffc_scene_set_bulk(ffc_scene *s, long n, long nt, const long Ti[], const long Tj[], const double Tv[], long mmax,
+                       long *bad);
+
+/* Where a scene's bulk matrix is factorized and solved. */
+typedef enum {
+    FFC_ENGINE_CHOLMOD = 0,   /* CHOLMOD, in this process (the default) */
+    FFC_ENGINE_MUMPS = 1,     /* parallel MUMPS over an MPI communicator: every rank of it holds the
+                                 same scene and makes the same calls in the same order; each hands
+                                 MUMPS a share of K's entries, and every rank receives each solution */
+    FFC_ENGINE_REPLICATED = 2 /* CHOLMOD on every rank of an MPI communicator, each holding the whole
+                                 factor (the same calls in the same order, as for MUMPS); the
+                                 compliance columns of the condensed path are shared out over the
+                                 ranks and gathered.  Small-strain bulks only (ffc_scene_set_bulk):
+                                 faster than MUMPS on a few ranks while one process's memory holds
+                                 the factor */
+} ffc_engine;
+typedef struct {
+    ffc_engine engine;   /* the engine */
+    int comm;            /* FFC_ENGINE_MUMPS: the communicator as a Fortran handle
+                            (MPI_Comm_c2f(MPI_COMM_WORLD)) */
+    int own;             /* ffc_parallel_solve: 0, every rank passes the same entries (each hands
+                            MUMPS its share); 1, each rank passes its own (A is their sum: a
+                            matrix assembled on each rank's part of the mesh) */
+    int links;           /* ffc_scene_set_parallel: 1, the condensed Newton's contact evaluations
+                            (augmented Lagrangian pairs with nodal multipliers, no mortar segments,
+                            the residual and the ranked tangent) shared out, each rank the links of
+                            its share of the slave facets, their sums gathered in rank order; 0,
+                            every rank evaluates every link */
+} ffc_parallel;
+/* Sets the engine of the next ffc_scene_set_bulk.  FFC_ERR_VALUE for an
+ * unknown engine, FFC_ERR_UNAVAILABLE for MUMPS or the replicated CHOLMOD
+ * in a build without MPI (ffc_has_mpi() == 0) or for MUMPS before
+ * MPI_Init (at ffc_scene_set_bulk). */
+int ffc_scene_set_parallel(ffc_scene *s, const ffc_parallel *p);
+/* Solves A x = b[n] once, A a general sparse matrix (a full Newton
+ * system: non-symmetric with friction, indefinite with multipliers) from
+ * its triplets (Ti, Tj, Tv)[nt] (duplicates summed), by parallel MUMPS
+ * over p->comm: every rank passes the same b, and the same entries (each
+ * hands MUMPS its share) or, with p->own, its own entries (A is their
+ * sum); x on every rank.  FFC_ERR_INDEX /
+ * FFC_ERR_NONFINITE (*bad = the triplet, or the entry of b),
+ * FFC_ERR_SINGULAR (an exactly zero pivot; as with UMFPACK, a tiny one
+ * gives a huge solution: the caller checks the residual), FFC_ERR_UNAVAILABLE
+ * without MPI or for p->engine = FFC_ENGINE_CHOLMOD (one process: FreeFEM's
+ * UMFPACK); FFC_ERR_VALUE for FFC_ENGINE_REPLICATED (a full system is
+ * MUMPS's). */
+int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], const long Tj[], const double Tv[],
+                       const double b[], double x[], long *bad);
+/* A full solver: A x = b for a general sparse A (a Newton system of the
+ * whole mesh: not symmetric with friction, indefinite with multipliers)
+ * by UMFPACK, in this process.  The pattern of the last call is kept:
+ * a call with the same order and the same (Ti, Tj) in the same order
+ * reuses its analysis (ordering and symbolic factorization) and only
+ * factorizes numerically. */
+typedef struct ffc_full ffc_full;
+int ffc_full_create(ffc_full **out);
+void ffc_full_free(ffc_full *f);
+/* Solves A x = b[n], A from its triplets (Ti, Tj, Tv)[nt] (duplicates
+ * summed).  FFC_ERR_INDEX / FFC_ERR_NONFINITE for a bad entry,
+ * FFC_ERR_SINGULAR for an exactly zero pivot (a tiny one gives a huge
+ * solution: the caller checks the residual), FFC_ERR_MEMORY; err (may be
+ * NULL) names the cause. */
+int ffc_full_solve(ffc_full *f, long n, long nt, const long Ti[], const long Tj[], const double Tv[],
+                   const double b[], double x[], ffc_error *err);
+/* Its counters (factorizations, backsolves, rcond) and the patterns it analysed. */
+int ffc_full_info(const ffc_full *f, ffc_solve_info *info, long *analyses);
+
+/* Solves (K + Kc) x = b[n], Kc from the triplets (Ti, Tj, Tv)[nt].
+ * FFC_ERR_EMPTY without a K; FFC_ERR_INDEX / FFC_ERR_NONFINITE (*bad =
+ * the triplet, or the entry of b); FFC_ERR_CAPACITY when Kc touches more
+ * than mmax contact dofs (*bad = their count); FFC_ERR_SINGULAR when K + S
+ * is not positive definite or the solve's residual stays above 1e-6. */
+int ffc_scene_solve(ffc_scene *s, long nt, const long Ti[], const long Tj[], const double Tv[], const double b[],
+                    double x[], long *bad);
+
+/* Counters of the bulk solves since the last ffc_scene_set_bulk (zero
+ * without a K). */
+int ffc_scene_solve_info(const ffc_scene *s, ffc_solve_info *info);
+
+/* ----------------------------------------------------- condensed Newton */
+/* Newton's method on the condensed contact problem of a small-strain
+ * augmented Lagrangian scene at fixed links and multipliers (the inner
+ * loop of an augmentation, run in C on the contact dofs only).
+ *
+ * Formulation: the bulk is linear, r(u) = K u - f + F_c(u) on the free
+ * dofs.  From u (residual r[n] given), the increment d solves
+ * K d + F_c(u + d) = b' = -(r - F_c(u)).  Let C be the free dofs that
+ * the contact force (or its tangent) has reached, G = P_C K^-1 P_C^T their
+ * compliance (pruned block solves, kept between calls), d0 = K^-1 b'.  The
+ * free dofs outside C carry no contact force, so with y = d_C the
+ * interior is eliminated exactly and
+ *     rho(y) = G^-1 (y - d0_C) + F_c(u + d)_C = 0     (m equations)
+ * is the residual of the full system at the equilibrated interior.  Its
+ * Jacobian is G^-1 + Kc_CC; the Newton step solves
+ *     (I + G Kc_CC) dy = -G rho,
+ * reduced to the dofs a that Kc touches (Kc_CC = E_a M E_a^T: t + G_aa M
+ * t = -(G rho)_a, dy = -G rho - G_Ca M t), an |a| x |a| dense LU.  The
+ * line search is the scene driver's: the root of g(s) = rho(y + s dy) . dy
+ * by regula falsi (Illinois); a direction with g(0) >= 0 is replaced by
+ * the material tangent's.  The primary unknown is the reaction
+ * z = G^-1 (y - d0_C) that holds C at y: the Newton equation gives its
+ * step, dz = -rho - Kc_CC dy, and y = d0_C + G z is recomputed from it
+ * (no drift between the two; a Cholesky factor of G gives only the
+ * start, y = 0: C held at u, the interior equilibrated).  C grows as the
+ * contact does: the contact evaluation reads the dofs R of the pairs'
+ * facets, whose displacement u + d0 + H z comes from the compliance
+ * columns kept on those rows (H = P_R K^-1 P_C^T, |R| x |C|); a force or
+ * tangent entry on a dof of R outside C makes it join C with z = 0 (the
+ * same state), at the start (the start is then taken again: at the first
+ * call of a load step the rest moves by the whole increment, and what it
+ * reaches is held at u too), at an iterate, or at a line-search point
+ * (the iteration is then taken again).  C thus holds the dofs in contact
+ * at some point of the solve, not every linked point's (Hertz P1 h_c =
+ * 0.025: 855 columns instead of 1,343).  At the end
+ * d = d0 + K^-1 P_C^T z (one back-solve): the state whose residual is
+ * rho.  With the shift S of a singular K (see above), K + S and
+ * F_c - S y take the place of K and F_c.  A dynamic scene's velocities
+ * follow u: v = v0 + dvdu (u + d - u).  Per call: two back-solves, one
+ * contact evaluation per iteration and line-search point, a column per
+ * dof that joins C, the Cholesky factor of G extended when C grew.  A
+ * singular K (a body that only contact holds) is shifted on three nodes
+ * far apart (by K's graph) in each body that the linked points' facets or
+ * the contact force at u touch: no rigid motion of such a body leaves
+ * them all at rest, and each shifted dof adds one term to the dense
+ * systems (ffc_solve_info.shifted counts them); should K + S still be
+ * singular, on the nodes the force reaches, then on the linked points'
+ * facets.  The shifted dofs belong to C. */
+/* Runs the condensed Newton from u[n] (n = 3 nv) with its residual r[n]
+ * (FreeFEM's tgv rows included: a Dirichlet row's r / K_ii is the error
+ * of its value, which the first step removes); u is the converged
+ * displacement on FFC_NEWTON_CONVERGED, the last iterate on
+ * FFC_NEWTON_MAXIT and FFC_NEWTON_NODESCENT (the returned reason),
+ * unchanged on an error (a negative status).  FFC_ERR_EMPTY without a
+ * bulk matrix, FFC_ERR_VALUE for a scene with node-to-surface pairs (or,
+ * with FFC_TANGENT_RANKED, pairs with multipliers at quadrature points) or
+ * options out of range, FFC_ERR_CAPACITY when C would hold more than
+ * max_dofs (or the bulk's mmax) dofs (*bad = their count; the columns
+ * added before stay, u is unchanged), FFC_ERR_SINGULAR when K + S or a
+ * condensed system cannot be factorized, FFC_ERR_NONFINITE (*bad = the
+ * entry of r or u). */
+int ffc_scene_newton(ffc_scene *s, const double r[], double u[], const ffc_newton_opts *o, ffc_newton_info *info,
+                     long *bad);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* FFC_API_SOLVE_H */
