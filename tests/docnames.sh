@@ -39,7 +39,7 @@ grep -oh '{"[A-Za-z0-9_]*", [01], ' plugin/ffc_scene*.c | sed 's/{"\([A-Za-z0-9_
 # ffcSolverStat's names: if (k == "name")
 grep -oh 'k == "[A-Za-z0-9_]*"' plugin/*.cpp | sed 's/k == "\(.*\)"/\1/' | sort -u > "$tmp/solverstats"
 # JSON fields: jsonNum("key", ...), jsonStr("key", ...)
-cat scripts/*.idp scripts/*.edp | grep -oE 'json(Num|Str)\("[A-Za-z0-9_]*"' | sed 's/.*("\(.*\)"/\1/' | sort -u > "$tmp/fields"
+cat scripts/*.idp scripts/scene/*.idp scripts/*.edp | grep -oE 'json(Num|Str)\("[A-Za-z0-9_]*"' | sed 's/.*("\(.*\)"/\1/' | sort -u > "$tmp/fields"
 # scene-library functions, macros and globals: the top-level lines of scripts/*.idp
 awk '
 /^[A-Za-z]/ {
@@ -58,7 +58,7 @@ awk '
         sub(/^[ \t]+/, "", t)
         if (match(t, /^[A-Za-z_][A-Za-z0-9_]*/)) print substr(t, 1, RLENGTH)
     }
-}' scripts/*.idp | sort -u > "$tmp/idp"
+}' scripts/*.idp scripts/scene/*.idp | sort -u > "$tmp/idp"
 cat "$tmp/calls" "$tmp/idp" | sort -u > "$tmp/anycall"
 for k in calls options settings stats solverstats fields idp; do
     [ -s "$tmp/$k" ] || { echo "docnames: found no $k in the code (has the code's layout changed?)"; exit 1; }
@@ -138,7 +138,7 @@ while read -r kind name; do
         stat) have stats "$name"; ok=$? ;;
         solverstat) have solverstats "$name"; ok=$? ;;
         field) have fields "$name"; ok=$? ;;
-        scene) grep -qw -- "$name" scripts/scene.idp; ok=$? ;;
+        scene) cat scripts/scene.idp scripts/scene/*.idp | grep -qw -- "$name"; ok=$? ;;
         case) [ -f "scripts/$name.edp" ]; ok=$? ;;
         *) continue ;;
     esac
