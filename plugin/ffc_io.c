@@ -14,16 +14,17 @@ int ffc_points_vtk(const char *path, long n, const double P[])
     fprintf(f, "# vtk DataFile Version 3.0\ncontact points\nASCII\nDATASET POLYDATA\n");
     fprintf(f, "POINTS %ld double\n", n);
     for (long k = 0; k < n; k++)
-        fprintf(f, "%.17g %.17g %.17g\n", P[k * FFC_POINT_COLS], P[k * FFC_POINT_COLS + 1],
-                P[k * FFC_POINT_COLS + 2]);
+        fprintf(f, "%.17g %.17g %.17g\n", P[k * FFC_POINT_COLS + FFC_PT_X], P[k * FFC_POINT_COLS + FFC_PT_Y],
+                P[k * FFC_POINT_COLS + FFC_PT_Z]);
     fprintf(f, "VERTICES %ld %ld\n", n, 2 * n);
     for (long k = 0; k < n; k++) fprintf(f, "1 %ld\n", k);
     static const char *names[3] = {"gap", "pressure", "active"};
+    static const int cols[3] = {FFC_PT_GAP, FFC_PT_P, FFC_PT_ACTIVE};
     fprintf(f, "POINT_DATA %ld\n", n);
     for (int c = 0; c < 3; c++) {
         fprintf(f, "SCALARS %s double 1\nLOOKUP_TABLE default\n", names[c]);
         for (long k = 0; k < n; k++) {
-            double v = P[k * FFC_POINT_COLS + 3 + c];
+            double v = P[k * FFC_POINT_COLS + cols[c]];
             fprintf(f, "%.17g\n", isfinite(v) ? v : -1.0); /* no partner: gap -1 */
         }
     }

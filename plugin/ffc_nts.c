@@ -634,16 +634,16 @@ int ffc_nts_points(long nv, const double X[], const double u[], long nn, const f
         tangential_force(d, ft);
         double *row = P + k * FFC_POINT_COLS;
         for (int i = 0; i < 3; i++) {
-            row[i] = X[3 * d->node + i] + u[3 * d->node + i];
-            row[8 + i] = ft[i] / d->area;
+            row[FFC_PT_X + i] = X[3 * d->node + i] + u[3 * d->node + i];
+            row[FFC_PT_TX + i] = ft[i] / d->area;
         }
-        row[3] = d->gap;
-        row[4] = on ? d->fn / d->area : 0.0;
-        row[5] = on;
-        row[6] = d->area;
-        row[7] = (double)d->mf;
-        row[11] = d->state;
-        row[12] = fabs(ffc__dot(ft, d->slip)) / d->area;
+        row[FFC_PT_GAP] = d->gap;
+        row[FFC_PT_P] = on ? d->fn / d->area : 0.0;
+        row[FFC_PT_ACTIVE] = on;
+        row[FFC_PT_AREA] = d->area;
+        row[FFC_PT_FACET] = (double)d->mf;
+        row[FFC_PT_STATE] = d->state;
+        row[FFC_PT_DISS] = fabs(ffc__dot(ft, d->slip)) / d->area;
         active += on;
     }
     return active <= 2147483647L ? (int)active : FFC_ERR_SIZE;

@@ -66,11 +66,11 @@ int ffc_points(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
             }
             st.gap = NAN;
         }
-        row[0] = st.x[0]; row[1] = st.x[1]; row[2] = st.x[2];
-        row[3] = st.gap; row[4] = st.tn; row[5] = st.active;
-        row[6] = st.da; row[7] = (double)lk->mf;
-        row[8] = -st.t[0]; row[9] = -st.t[1]; row[10] = -st.t[2];
-        row[11] = st.fstate; row[12] = ffc__dot(st.t, st.slip);
+        row[FFC_PT_X] = st.x[0]; row[FFC_PT_Y] = st.x[1]; row[FFC_PT_Z] = st.x[2];
+        row[FFC_PT_GAP] = st.gap; row[FFC_PT_P] = st.tn; row[FFC_PT_ACTIVE] = st.active;
+        row[FFC_PT_AREA] = st.da; row[FFC_PT_FACET] = (double)lk->mf;
+        row[FFC_PT_TX] = -st.t[0]; row[FFC_PT_TY] = -st.t[1]; row[FFC_PT_TZ] = -st.t[2];
+        row[FFC_PT_STATE] = st.fstate; row[FFC_PT_DISS] = ffc__dot(st.t, st.slip);
     }
     ffc__nodal_free(&w);
     return FFC_OK;
@@ -114,18 +114,18 @@ int ffc_points_nodes(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
         if (mf[v] < -1) continue;
         double *row = P + r++ * FFC_POINT_COLS;
         const double W = w.Wn[v];
-        for (int i = 0; i < 3; i++) row[i] = pair->X[3 * v + i] + pair->u[3 * v + i];
-        row[3] = W > 0.0 ? w.Gn[v] / W : NAN;
-        row[4] = w.tn[v];
-        row[5] = w.tn[v] > 0.0;
-        row[6] = W;
-        row[7] = (double)mf[v];
-        for (int i = 8; i < FFC_POINT_COLS; i++) row[i] = 0.0;
+        for (int i = 0; i < 3; i++) row[FFC_PT_X + i] = pair->X[3 * v + i] + pair->u[3 * v + i];
+        row[FFC_PT_GAP] = W > 0.0 ? w.Gn[v] / W : NAN;
+        row[FFC_PT_P] = w.tn[v];
+        row[FFC_PT_ACTIVE] = w.tn[v] > 0.0;
+        row[FFC_PT_AREA] = W;
+        row[FFC_PT_FACET] = (double)mf[v];
+        for (int i = FFC_PT_TX; i < FFC_POINT_COLS; i++) row[i] = 0.0;
         if (fric && W > 0.0) {
             const nfn_t *T = &w.T[v];
-            for (int i = 0; i < 3; i++) row[8 + i] = -T->f.t[i];
-            row[11] = T->f.state;
-            row[12] = ffc__slip_scale(effects, law) * ffc__dot(T->f.t, T->r);
+            for (int i = 0; i < 3; i++) row[FFC_PT_TX + i] = -T->f.t[i];
+            row[FFC_PT_STATE] = T->f.state;
+            row[FFC_PT_DISS] = ffc__slip_scale(effects, law) * ffc__dot(T->f.t, T->r);
         }
     }
     ffc__nodal_free(&w);

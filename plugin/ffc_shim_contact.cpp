@@ -331,17 +331,17 @@ static long free_motions(const char *fn, FFScene *C, KN<double> *u, KNM<double> 
     if (st == FFC_ERR_CAPACITY) st = ffc_scene_free_motions(d.s, pu, n, m.data(), &n);
     if (st == FFC_ERR_EMPTY) fail(fn, "argument 'C': the scene was made without tetrahedra");
     if (st) scene_error(fn, st, -1, "the free rigid motions");
-    M->resize(n, 15);
+    M->resize(n, FFC_MOTION_COLS);
     for (long r = 0; r < n; r++) {
-        (*M)(r, 0L) = m[r].body;
+        (*M)(r, (long)FFC_MO_BODY) = m[r].body;
         for (long k = 0; k < 3; k++) {
-            (*M)(r, 1 + k) = m[r].t[k];
-            (*M)(r, 4 + k) = m[r].w[k];
-            (*M)(r, 7 + k) = m[r].p[k];
-            (*M)(r, 10 + k) = m[r].x[k];
+            (*M)(r, FFC_MO_T + k) = m[r].t[k];
+            (*M)(r, FFC_MO_W + k) = m[r].w[k];
+            (*M)(r, FFC_MO_P + k) = m[r].p[k];
+            (*M)(r, FFC_MO_X + k) = m[r].x[k];
         }
-        (*M)(r, 13L) = m[r].amount;
-        (*M)(r, 14L) = m[r].tet;
+        (*M)(r, (long)FFC_MO_AMOUNT) = m[r].amount;
+        (*M)(r, (long)FFC_MO_TET) = m[r].tet;
     }
     return n;
 }

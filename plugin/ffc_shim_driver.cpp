@@ -163,7 +163,8 @@ long sceneLsCuts(const Named &, FFScene *const &C)
 }
 
 // the layers' reasons as script constants: Newton (ffc_newton_reason), the
-// augmentations and the load steps (ffc_step_reason)
+// augmentations and the load steps (ffc_step_reason); the columns of
+// ffcPoints and ffcFreeMotions
 void register_driver()
 {
     typedef FFScene *S;
@@ -186,7 +187,15 @@ void register_driver()
         {"ffcNewtonCapacity", FFC_NEWTON_CAPACITY},   {"ffcStepConverged", FFC_STEP_CONVERGED},
         {"ffcStepAugment", FFC_STEP_AUGMENT},         {"ffcStepNoPair", FFC_STEP_NOPAIR},
         {"ffcStepMaterial", FFC_STEP_MATERIAL},       {"ffcStepTime", FFC_STEP_TIME},
-        {"ffcStepSettings", FFC_STEP_SETTINGS},       {"ffcStepNewton", FFC_STEP_NEWTON}};
+        {"ffcStepSettings", FFC_STEP_SETTINGS},       {"ffcStepNewton", FFC_STEP_NEWTON},
+        // the columns of ffcPoints and of ffcFreeMotions, by name
+        {"ffcPtX", FFC_PT_X}, {"ffcPtY", FFC_PT_Y}, {"ffcPtZ", FFC_PT_Z}, {"ffcPtGap", FFC_PT_GAP},
+        {"ffcPtP", FFC_PT_P}, {"ffcPtActive", FFC_PT_ACTIVE}, {"ffcPtArea", FFC_PT_AREA},
+        {"ffcPtFacet", FFC_PT_FACET}, {"ffcPtTx", FFC_PT_TX}, {"ffcPtTy", FFC_PT_TY}, {"ffcPtTz", FFC_PT_TZ},
+        {"ffcPtState", FFC_PT_STATE}, {"ffcPtDiss", FFC_PT_DISS}, {"ffcPtCols", FFC_POINT_COLS},
+        {"ffcMoBody", FFC_MO_BODY}, {"ffcMoT", FFC_MO_T}, {"ffcMoW", FFC_MO_W}, {"ffcMoP", FFC_MO_P},
+        {"ffcMoX", FFC_MO_X}, {"ffcMoAmount", FFC_MO_AMOUNT}, {"ffcMoTet", FFC_MO_TET},
+        {"ffcMoCols", FFC_MOTION_COLS}};
     for (const auto &c : k) Global.New(c.name, CConstant<long>(c.v));
 }
 

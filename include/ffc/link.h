@@ -248,11 +248,23 @@ int ffc_augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
                 long nl, const ffc_link links[], double lambda[], double lam_t[],
                 const ffc_law *law, ffc_stats *stats, long *bad);
 
-/* Per-link output P[nl*FFC_POINT_COLS]: x, y, z (current slave point),
- * gap, t_N, active, area da, master facet; with friction (zeros without)
- * the traction on the slave -T (x, y, z), the friction state FFC_FRIC_*,
- * and the dissipation density T . r (force/length). */
-#define FFC_POINT_COLS 13
+/* Per-link output P[nl*FFC_POINT_COLS], its columns by name (the plugin's
+ * constants ffcPtX ... ffcPtDiss): the current slave point, gap, t_N,
+ * active, area da, master facet; with friction (zeros without) the
+ * traction on the slave -T, the friction state FFC_FRIC_*, and the
+ * dissipation density T . r (force/length). */
+enum {
+    FFC_PT_X = 0, FFC_PT_Y = 1, FFC_PT_Z = 2, /* the slave point (length) */
+    FFC_PT_GAP = 3,                           /* gap, >= 0 open (length) */
+    FFC_PT_P = 4,                             /* pressure t_N (force/length^2) */
+    FFC_PT_ACTIVE = 5,                        /* 1 in contact, 0 open */
+    FFC_PT_AREA = 6,                          /* weight or tributary area (length^2) */
+    FFC_PT_FACET = 7,                         /* the master facet (-1: none) */
+    FFC_PT_TX = 8, FFC_PT_TY = 9, FFC_PT_TZ = 10, /* friction traction on the slave (force/length^2) */
+    FFC_PT_STATE = 11,                        /* friction state: 0 open, 1 stick, 2 slip */
+    FFC_PT_DISS = 12,                         /* dissipation density (force/length) */
+    FFC_POINT_COLS = 13
+};
 int ffc_points(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
                long nl, const ffc_link links[], const double lambda[],
                const double lam_t[], const ffc_law *law, double P[], long *bad);

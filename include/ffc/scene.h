@@ -238,6 +238,12 @@ typedef struct {
     double amount; /* how far u moved the body along it (least squares over the body's nodes): a turn's
                       angle about w (radians), a translation's length along t at the centroid; 0 without u */
 } ffc_motion;
+/* The columns of a motion's row in the plugin's ffcFreeMotions (its
+ * constants ffcMoBody ... ffcMoTet): t, w, p, x three each. */
+enum {
+    FFC_MO_BODY = 0, FFC_MO_T = 1, FFC_MO_W = 4, FFC_MO_P = 7, FFC_MO_X = 10, FFC_MO_AMOUNT = 13, FFC_MO_TET = 14,
+    FFC_MOTION_COLS = 15
+};
 
 /* The rigid motions of each body that the prescribed dofs leave free: the
  * bodies are the tetrahedra T[nt*4] joined by shared nodes (nodes in no
