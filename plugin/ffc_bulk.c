@@ -389,3 +389,17 @@ long ffc__bulk_n(const ffc__bulk *b) { return b ? b->n : 0; }
 double ffc__bulk_kfree(const ffc__bulk *b) { return b ? b->kfree : 0.0; }
 
 const ffc_error *ffc__bulk_error(const ffc__bulk *b) { return b && b->eng ? &b->eng->err : NULL; }
+
+int ffc__bulk_note(ffc__bulk *b, int st)
+{
+    if (st == FFC_OK) ffc__bulk_clear_error(b);   /* (a failure on the way, mended: no reason left) */
+    if (st != FFC_ERR_MEMORY || !b || !b->eng || b->eng->err.status) return st;
+    const double mb = 8.0 * (double)b->ld * (double)b->ld * 3.0 / 1048576.0;
+    return ffc__engine_fail(b->eng, st, FFC_AT_COUNT, b->m, "out of memory with %ld dofs and %ld contact dofs "
+                            "(the dense compliance and its work: about %.0f MB)", b->n, b->m, mb);
+}
+
+void ffc__bulk_clear_error(ffc__bulk *b)
+{
+    if (b && b->eng) b->eng->err = (ffc_error){0, FFC_AT_NONE, -1, ""};
+}

@@ -19,6 +19,11 @@ int ffc__bulk_create(long n, long nt, const long Ti[], const long Tj[], const do
 void ffc__bulk_free(ffc__bulk *b);
 /* The reason of the engine's last failure (never NULL for a bulk). */
 const ffc_error *ffc__bulk_error(const ffc__bulk *b);
+/* st, the record cleared when st is FFC_OK, and when it is FFC_ERR_MEMORY from outside the engine (the dense
+ * compliance, a direction's dense system) a record naming the sizes */
+int ffc__bulk_note(ffc__bulk *b, int st);
+/* the record cleared (at the start of each solve, Newton or saddle call) */
+void ffc__bulk_clear_error(ffc__bulk *b);
 /* Factorizes with parallel MUMPS over the Fortran communicator fcomm
  * instead of CHOLMOD (FFC_ERR_UNAVAILABLE in a build without MPI). */
 int ffc__bulk_set_mumps(ffc__bulk *b, int fcomm);

@@ -543,6 +543,7 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
     *bad = -1;
     if (!b || !fn || !r || !u || !o || !info || (nc > 0 && !cand) || (nr > 0 && !rows)) return FFC_ERR_NULL;
     memset(info, 0, sizeof *info);
+    ffc__bulk_clear_error(b);
     b->t_eval = &info->t_eval;
     if (nc < 0 || nr < 0) return FFC_ERR_SIZE;
     if (o->max_iter < 1 || o->max_ls < 0 || !(o->ls_tol > 0 && o->ls_tol < 1) || !(o->ftol > 0) ||
@@ -578,5 +579,6 @@ int ffc__bulk_newton(ffc__bulk *b, long nr, const long rows[], long nc, const lo
     free(c.buf);
     free(c.ibuf);
     if (c.buf) b->info.solves++;
+    st = ffc__bulk_note(b, st);
     return st ? st : reason;
 }

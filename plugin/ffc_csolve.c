@@ -62,6 +62,7 @@ int ffc__bulk_solve(ffc__bulk *b, long nt, const long Ti[], const long Tj[], con
             if (bad) *bad = i;
             return FFC_ERR_NONFINITE;
         }
+    ffc__bulk_clear_error(b);
     b->info.solves++;
     if (nt > b->kvcap) {
         double *kv = realloc(b->kv, (size_t)nt * sizeof(double));

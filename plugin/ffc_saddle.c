@@ -164,6 +164,7 @@ int ffc__bulk_saddle(ffc__bulk *b, long nt, const long Bi[], const long Bj[], co
         if (!isfinite(rhs[i])) { *bad = i; return FFC_ERR_NONFINITE; }
     for (long r = 0; r < nr; r++)
         if (!isfinite(c[r])) { *bad = n + r; return FFC_ERR_NONFINITE; }
+    ffc__bulk_clear_error(b);
     /* C: the free dofs of the rows' columns, and the shifted dofs */
     for (long k = 0; k < b->m; k++) b->pos[b->dof[k]] = k;
     long nnew = 0;

@@ -50,7 +50,16 @@ int ffc_scene_solve(ffc_scene *s, long nt, const long Ti[], const long Tj[], con
 {
     if (!s) return FFC_ERR_NULL;
     if (!s->bulk) return FFC_ERR_EMPTY;
-    return ffc__bulk_solve(s->bulk, nt, Ti, Tj, Tv, b, x, bad);
+    return ffc__bulk_note(s->bulk, ffc__bulk_solve(s->bulk, nt, Ti, Tj, Tv, b, x, bad));
+}
+
+int ffc_scene_solve_error(const ffc_scene *s, ffc_error *err)
+{
+    if (!s || !err) return FFC_ERR_NULL;
+    const ffc_error *e = ffc__bulk_error(s->bulk);
+    if (e) *err = *e;
+    else *err = (ffc_error){0, FFC_AT_NONE, -1, ""};
+    return FFC_OK;
 }
 
 int ffc_scene_solve_info(const ffc_scene *s, ffc_solve_info *info)
@@ -199,7 +208,7 @@ int ffc_scene_nts_solve(ffc_scene *s, const double u[], const double fixed[], co
     double *c = malloc((size_t)(nr + 1) * sizeof(double));
     if (!Bi || !Bj || !Bv || !Fv || !c) st = FFC_ERR_MEMORY;
     else st = ffc_scene_nts_rows(s, u, fixed, nt, Bi, Bj, Bv, Fv, nr, c, &nt, &nr, bad);
-    if (!st) st = ffc__bulk_saddle(s->bulk, nt, Bi, Bj, Bv, Fv, nr, c, rhs, x, m, bad);
+    if (!st) st = ffc__bulk_note(s->bulk, ffc__bulk_saddle(s->bulk, nt, Bi, Bj, Bv, Fv, nr, c, rhs, x, m, bad));
     free(Bi); free(Bj); free(Bv); free(Fv); free(c);
     return st;
 }

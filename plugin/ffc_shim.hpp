@@ -238,7 +238,7 @@ void register_driver();
 const double *need_scene_u(const char *fn, SceneData &d, KN<double> *u, const char *arg = "u");
 void need_penalties(const char *fn, SceneData &d);
 void need_not_inverted(const char *fn, SceneData &d, const double *u);
-void scene_error(const char *fn, int st, long bad, const char *what);
+[[noreturn]] void scene_error(const char *fn, int st, long bad, const char *what);
 int need_pair_index(const char *fn, const SceneData &d, long k, bool all, const char *arg = "pair");
 void need_lame(const char *fn, const SceneData &d, KN<double> *l1, KN<double> *l2);
 void scene_motion(const char *fn, const Named &nm, SceneData &d, int iv, int idt, int idvdu);

@@ -108,7 +108,7 @@ void need_not_inverted(const char *fn, SceneData &d, const double *u)
     }
 }
 
-void scene_error(const char *fn, int st, long bad, const char *what)
+[[noreturn]] void scene_error(const char *fn, int st, long bad, const char *what)
 {
     std::ostringstream s;
     s << what << ": " << ffc_strerror(st);

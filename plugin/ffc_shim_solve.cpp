@@ -3,6 +3,21 @@
 
 namespace ffc_shim {
 
+namespace {
+
+// A bulk call's failure: the engine's own reason where it has one (out of
+// memory with the sizes it failed on), else the status's text
+[[noreturn]] void bulk_error(const char *fn, SceneData &d, int st, long bad, const char *what)
+{
+    ffc_error e;
+    if (ffc_scene_solve_error(d.s, &e) == FFC_OK && e.status == st && e.msg[0])
+        fail(fn, std::string(what) + ": " + e.msg);
+    scene_error(fn, st, bad, what);
+}
+
+} // namespace
+
+
 // ffcMassSpread(M, spread, T): the interpolation T of the redistributed
 // mass T' M T (ffc_mass_spread): the dofs with spread[i] != 0 take the
 // mean of their neighbours in M off that set. Returns the spread dofs
@@ -146,7 +161,7 @@ long sceneSolve(const Named &, FFScene *const &C, Matrice_Creuse<double> *const 
     }
     if (st == FFC_ERR_SINGULAR) return 1;
     if (st == FFC_ERR_CAPACITY) return 2;
-    if (st) scene_error(fn, st, bad, "the linear solve");
+    if (st) bulk_error(fn, d, st, bad, "the linear solve");
     x->resize(n);
     for (long i = 0; i < n; i++) (*x)[i] = xv[i];
     return 0;
@@ -227,7 +242,7 @@ long sceneNewton(const Named &nm, FFScene *const &C, KN<double> *const &r, KN<do
     if (st == FFC_ERR_EMPTY) fail(fn, "argument 'C': no bulk matrix yet (ffcBulk(C, K) first)");
     if (st == FFC_ERR_SINGULAR) return FFC_NEWTON_LINEAR;
     if (st == FFC_ERR_CAPACITY) return FFC_NEWTON_CAPACITY;
-    if (st < 0) scene_error(fn, st, bad, "the condensed Newton");
+    if (st < 0) bulk_error(fn, d, st, bad, "the condensed Newton");
     for (long i = 0; i < n; i++) (*u)[i] = uv[i];
     hist->resize(d.newton.nhist);
     for (int i = 0; i < d.newton.nhist; i++) (*hist)[i] = d.newton.hist[i];
@@ -427,7 +442,7 @@ long sceneNTSSolve(const Named &, FFScene *const &C, KN<double> *const &u, KN<do
     need_nts_scale(fn, d, st, bad);
     if (st == FFC_ERR_SINGULAR) return 1;
     if (st == FFC_ERR_CAPACITY) return 2;
-    if (st) scene_error(fn, st, bad, "the node-to-surface solve");
+    if (st) bulk_error(fn, d, st, bad, "the node-to-surface solve");
     x->resize(n);
     for (long i = 0; i < n; i++) (*x)[i] = xv[i];
     m->resize(nr);

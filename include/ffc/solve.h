@@ -141,6 +141,13 @@ int ffc_scene_solve(ffc_scene *s, long nt, const long Ti[], const long Tj[], con
 /* Counters of the bulk solves since the last ffc_scene_set_bulk (zero
  * without a K). */
 int ffc_scene_solve_info(const ffc_scene *s, ffc_solve_info *info);
+/* The reason of the last failure of the scene's bulk solves (its linear
+ * engine's record: status, what its index counts, a one-line message with
+ * the sizes, e.g. "CHOLMOD: out of memory factorizing a matrix of order
+ * 521592 with 20349867 entries"); status 0 when the last bulk call
+ * (ffc_scene_solve, ffc_scene_newton, ffc_scene_nts_solve) did not fail in
+ * its engine. */
+int ffc_scene_solve_error(const ffc_scene *s, ffc_error *err);
 
 /* ----------------------------------------------------- condensed Newton */
 /* Newton's method on the condensed contact problem of a small-strain

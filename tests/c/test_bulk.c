@@ -209,8 +209,14 @@ static void test_bad_input(void **state)
     assert_int_equal(ffc_scene_set_bulk(s, N, nt, Ti, Tj, Tv, 1000, &bad), FFC_OK);
     /* body B is held by nothing: K alone is singular */
     assert_int_equal(ffc_scene_solve(s, 0, ci, cj, cv, b, x, &bad), FFC_ERR_SINGULAR);
+    ffc_error e;   /* (the engine's reason, one line) */
+    assert_int_equal(ffc_scene_solve_error(s, &e), FFC_OK);
+    assert_int_equal(e.status, FFC_ERR_SINGULAR);
+    assert_non_null(strstr(e.msg, "CHOLMOD: the matrix is not positive definite"));
     /* ... and the factorization is tried again with the next contact tangent */
     assert_int_equal(ffc_scene_solve(s, nc, ci, cj, cv, b, x, &bad), FFC_OK);
+    assert_int_equal(ffc_scene_solve_error(s, &e), FFC_OK);
+    assert_int_equal(e.status, 0);   /* (a call that succeeds leaves no reason) */
     ci[2] = -1;
     assert_int_equal(ffc_scene_solve(s, nc, ci, cj, cv, b, x, &bad), FFC_ERR_INDEX);
     assert_int_equal(bad, 2);
