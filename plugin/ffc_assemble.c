@@ -121,7 +121,8 @@ int ffc__common_checks(const ffc_effects *fx, const ffc_pair *P, int qdeg, long 
     int s = check_pair(P);
     if (s) return s;
     if (!(law->eps_n > 0) || isinf(law->eps_n) || (law->nodal != 0 && law->nodal != 1) ||
-        law->material_only < 0 || law->material_only > 2 || (law->material_only == 2 && !law->nodal))
+        (law->tangent != 0 && law->tangent != FFC_TANGENT_CONSISTENT && law->tangent != FFC_TANGENT_MATERIAL &&
+         law->tangent != FFC_TANGENT_RANKED) || (law->tangent == FFC_TANGENT_RANKED && !law->nodal))
         return FFC_ERR_VALUE;
     if (fx->friction && (!(law->mu >= 0) || isinf(law->mu))) return FFC_ERR_VALUE;
     const int fric = ffc__friction_on(fx, law);

@@ -7,6 +7,12 @@
 
 #include "ffc.h"
 
+/* a law's tangent without the geometric terms (material or ranked) */
+static inline int ffc__law_material(const ffc_law *law)
+{
+    return law->tangent == FFC_TANGENT_MATERIAL || law->tangent == FFC_TANGENT_RANKED;
+}
+
 /* Geometry of one link, everything the normal and frictional terms need. */
 typedef struct {
     int ns, nm, nd;                 /* slave, master nodes; unknowns 3 (ns + nm) */

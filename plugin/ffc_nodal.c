@@ -211,7 +211,7 @@ int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw
         if (lam_t) {
             nfl_t *fl = &w->F[w->n];
             ffc__link_slip(&g, CP3(ln.Ds), CP3(ln.Dm), fl->r);
-            ffc__link_slip_deriv(&g, CP3(ln.Dm), ffc__motion_coef(fx, law), law->material_only, fl->sw, fl->Q);
+            ffc__link_slip_deriv(&g, CP3(ln.Dm), ffc__motion_coef(fx, law), ffc__law_material(law), fl->sw, fl->Q);
             memcpy(fl->dn, g.dn, sizeof fl->dn);
         }
         for (int a = 0; a < P->ns; a++) {

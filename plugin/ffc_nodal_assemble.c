@@ -98,7 +98,7 @@ typedef struct {
  *       dr~_a += Phi_a(b) da (r_b - r~_a) dv_b / W_a,   dm_a += Phi_a(b) da n_b dv_b.
  * The dual basis of a partly covered facet also moves with its segments;
  * that term is not included (full coverage: A is fixed).  Geometric terms:
- * none with law->material_only.  Each point is evaluated into E[b];
+ * none with a material tangent (ffc__law_material).  Each point is evaluated into E[b];
  * returns the status. */
 static int segment_motion(const ffc_effects *fx, const ffc_pair *P, const ffc_law *law, const nodal_t *w, int fric,
                           nedge_t E[], long cap, long Ti[], long Tj[], double Tv[], long *nt, int *ok, long *bad)
@@ -138,7 +138,7 @@ static int segment_motion(const ffc_effects *fx, const ffc_pair *P, const ffc_la
             int fs;
             double sw[FFC_MAXDOF], Q[3][FFC_MAXDOF];
             ffc__link_slip(&g, CP3(ln.Ds), CP3(ln.Dm), e->r);
-            ffc__link_slip_deriv(&g, CP3(ln.Dm), ffc__motion_coef(fx, law), law->material_only, sw, Q);
+            ffc__link_slip_deriv(&g, CP3(ln.Dm), ffc__motion_coef(fx, law), ffc__law_material(law), sw, Q);
             ffc__nodal_point_traction(P, &tmp, &nl, w->T, Tq, &fs);
             for (int k = 0; k < ln.nd; k++) F[k] += st.da * sw[k] * Tq[k % 3];
         }
@@ -633,8 +633,8 @@ int ffc__assemble_nodal(const ffc_effects *fx, const ffc_pair *P, const double q
     S.P = P;
     S.links = links;
     S.law = law;
-    S.material_only = law->material_only != 0;
-    S.ranked = law->material_only == 2;
+    S.material_only = ffc__law_material(law);
+    S.ranked = law->tangent == FFC_TANGENT_RANKED;
     S.fric = ffc__friction_on(fx, law);
     /* a share of the links: the residual and the ranked tangent only, whose
      * terms are sums over links (not the segments' or the dual basis' motion) */

@@ -101,7 +101,7 @@ int ffc_link_contact(const ffc_effects *effects, int ns, const double Xs[][3],
     if (K)
         for (int k = 0; k < nd; k++) memset(K[k], 0, (size_t)nd * sizeof K[k][0]);
     lgeo_t g;
-    int s = ffc__link_geometry(effects, ns, Xs, Xs0, xs, w, nm, Xm, NULL, st, &g, K && !law->material_only ? K : NULL);
+    int s = ffc__link_geometry(effects, ns, Xs, Xs0, xs, w, nm, Xm, NULL, st, &g, K && !ffc__law_material(law) ? K : NULL);
     if (s) return s;
     const double trial = lambda - eps * st->gap;
     st->active = trial > 0.0;
@@ -117,7 +117,7 @@ int ffc_link_contact(const ffc_effects *effects, int ns, const double Xs[][3],
         /* K holds D on entry (consistent tangent) or zero (material only) */
         for (int k = 0; k < nd; k++)
             for (int l = 0; l < nd; l++)
-                K[k][l] = law->material_only ? da * eps * g.G[k] * g.G[l]
+                K[k][l] = ffc__law_material(law) ? da * eps * g.G[k] * g.G[l]
                                              : da * (eps * g.G[k] * g.G[l] - tn * K[k][l]) - tn * g.G[k] * g.dda[l];
     }
     if (!fric) return FFC_OK;
@@ -130,7 +130,7 @@ int ffc_link_contact(const ffc_effects *effects, int ns, const double Xs[][3],
     for (int i = 0; i < 3; i++) { st->t[i] = f.t[i]; st->slip[i] = sc * r[i]; }
     st->fstate = f.state;
     double F[FFC_MAXDOF];
-    ffc__link_friction(&g, st, Dm, ffc__motion_coef(effects, law), &f, law->material_only, R, K, F);
+    ffc__link_friction(&g, st, Dm, ffc__motion_coef(effects, law), &f, ffc__law_material(law), R, K, F);
     if (K)
         for (int k = 0; k < nd; k++)
             for (int l = 0; l < nd; l++) K[k][l] -= eps * F[k] * g.G[l];

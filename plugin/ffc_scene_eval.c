@@ -138,7 +138,7 @@ pair_call ffc__pair_view(const ffc_scene *s, const scene_pair *p, const double u
     memset(law, 0, sizeof *law);
     law->eps_n = p->o.eps_n;
     law->nodal = p->o.nodal;
-    law->material_only = tangent == FFC_TANGENT_MATERIAL ? 1 : tangent == FFC_TANGENT_RANKED ? 2 : 0;
+    law->tangent = tangent == FFC_TANGENT_NONE ? FFC_TANGENT_CONSISTENT : tangent;
     law->mu = p->o.mu;
     /* the default tangential penalty: eps_N per unit slip; in the velocity
      * form eps_N / (dv/du), the same stiffness against the step's slip */

@@ -69,6 +69,21 @@ typedef struct {
                           (effects->dynamic), in place of u_prev */
 } ffc_pair;
 
+/* The form of a contact tangent: what a scene's assembly writes, a law's
+ * tangent, the condensed Newton's choice (one coding everywhere). */
+enum {
+    FFC_TANGENT_NONE = 0,       /* residual only */
+    FFC_TANGENT_CONSISTENT = 1, /* exact derivative of the residual */
+    FFC_TANGENT_MATERIAL = 2,   /* without the geometric terms (the variation of the normal, the foot and
+                                   the area): positive semi-definite, for a descent direction when the
+                                   consistent tangent is indefinite */
+    FFC_TANGENT_RANKED = 3      /* the material tangent of the nodal law as a sum of low-rank terms,
+                                   one to four per slave node: K = sum_k U_k V_k^T, written as
+                                   triplets (dof, 2 k, U_k[dof]) and (dof, 2 k + 1, V_k[dof]); the
+                                   condensed Newton then solves a system of the terms' count
+                                   (Woodbury) instead of one of the tangent's support */
+};
+
 /* The contact law and where its multipliers live. */
 typedef struct {
     double eps_n;      /* penalty (force/length^3), > 0 */
@@ -81,12 +96,9 @@ typedef struct {
                           lambda[nl], updated pointwise as in the seed (more
                           constraints than contact unknowns: the multipliers
                           may drift and Uzawa may stall) */
-    int material_only; /* 1: tangent without the geometric terms (variation of
-                          the normal, the foot and the area): positive
-                          semi-definite, for a descent direction when the
-                          consistent tangent is indefinite; 0: consistent;
-                          2: the material tangent in ranked form
-                          (FFC_TANGENT_RANKED; the nodal law only) */
+    int tangent;       /* the tangent's form: FFC_TANGENT_CONSISTENT (0 counts as it),
+                          FFC_TANGENT_MATERIAL, or FFC_TANGENT_RANKED (the material
+                          tangent in ranked form; the nodal law only) */
     double mu;         /* Coulomb coefficient (1), >= 0; read only when
                           effects->friction (mu = 0 then skips all friction work) */
     double eps_t;      /* tangential penalty, > 0 when friction: force/length^3

@@ -36,16 +36,6 @@ enum {
                                    tangent has the segments' motion (ffc_law.edge);
                                    ffc_scene_points reports the segments of the last of those */
 };
-enum {
-    FFC_TANGENT_NONE = 0,       /* residual only */
-    FFC_TANGENT_CONSISTENT = 1, /* exact derivative of the residual */
-    FFC_TANGENT_MATERIAL = 2,   /* without the geometric terms (see ffc_law.material_only) */
-    FFC_TANGENT_RANKED = 3      /* the material tangent of the nodal law as a sum of low-rank terms,
-                                   one to four per slave node: K = sum_k U_k V_k^T, written as
-                                   triplets (dof, 2 k, U_k[dof]) and (dof, 2 k + 1, V_k[dof]); the
-                                   condensed Newton then solves a system of the terms' count
-                                   (Woodbury) instead of one of the tangent's support */
-};
 
 /* A pair's method, law and search options. */
 typedef struct {

@@ -571,7 +571,7 @@ static void test_assembled_shares(void **state)
         ascene *a = malloc(sizeof *a);
         ascene_make(a, 1, &s);
         ffc_effects fx = {regime > 0, 0, 0};
-        ffc_law law = {60, 1, 2, regime == 1 ? 1e6 : 0.3, regime == 1 ? 5.0 : 2000.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0,
+        ffc_law law = {60, 1, FFC_TANGENT_RANKED, regime == 1 ? 1e6 : 0.3, regime == 1 ? 5.0 : 2000.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0,
                        NULL, NULL, NULL};
         long *Ti = malloc(CAP * sizeof *Ti), *Tj = malloc(CAP * sizeof *Tj), nt, bad;
         double *Tv = malloc(CAP * sizeof *Tv);
@@ -664,7 +664,7 @@ static void test_assembled_shares(void **state)
                          FFC_ERR_NULL);
         ls.nsum = shares_nsum;
         ls.nsum_ctx = &c;
-        ls.material_only = 0;
+        ls.tangent = FFC_TANGENT_CONSISTENT;
         assert_int_equal(ffc_assemble(&fx, &a->P, 2, NL, a->L, a->lam, a->lam_t, &ls, R, CAP, Ti, Tj, Tv, &nt, NULL, &bad),
                          FFC_ERR_VALUE);
         ls.nodal = 0;

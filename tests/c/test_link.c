@@ -320,7 +320,7 @@ static void test_nodal_tangent(void **state)
     {
         ffc_effects fx = {0, 0, 0};
         ffc_law mo = law;
-        mo.material_only = 1;
+        mo.tangent = FFC_TANGENT_MATERIAL;
         double R[NV * 3] = {0};
         ffc_stats st;
         assert_int_equal(ffc_assemble(&fx, &P, 2, NFS * nq, L, lam, NULL, &mo, R, CAP, Ti, Tj, Tv, &nt, &st, &bad), FFC_OK);
