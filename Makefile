@@ -70,13 +70,13 @@ $(MB)/shim/%.o: plugin/%.cpp $(SHHDRS)
 	$(MPICXX) $(SHFLAGS) -DFFC_MPI -c $< -o $@
 $(MB)/ffcontact.so: $(MSHOBJ) $(MB)/libffc.a
 	$(MPICXX) $(FFFLAGS) -DFFC_MPI $(MSHOBJ) $(MB)/libffc.a -ldmumps -lscalapack-openmpi $(CLIBS) -o $@
-$(MB)/tests/%: tests/mpi/%.c tests/c/ffc_test.h $(MB)/libffc.a
+$(MB)/tests/%: tests/mpi/%.c tests/c/ffc_test.h tests/c/engine_test.h $(MB)/libffc.a
 	@mkdir -p $(dir $@)
 	$(MPICC) $(CFLAGS) -DFFC_MPI -Itests/c -Iplugin $< $(MB)/libffc.a -lcmocka -ldmumps -lscalapack-openmpi $(CLIBS) -o $@
 MPITESTS := $(patsubst tests/mpi/%.c,$(MB)/tests/%,$(wildcard tests/mpi/test_*.c))
 mpitest: $(MPITESTS)
 
-$(B)/tests/%: tests/c/%.c tests/c/ffc_test.h $(B)/libffc.a
+$(B)/tests/%: tests/c/%.c tests/c/ffc_test.h tests/c/engine_test.h $(B)/libffc.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -Itests/c -Iplugin $< $(B)/libffc.a -lcmocka $(CLIBS) -o $@
 
@@ -143,7 +143,7 @@ $(B)/asan/libffc.a: $(CSRC) $(HDRS)
 	@rm -f $(B)/asan/*.o $@
 	cd $(B)/asan && for f in $(CSRC); do clang -std=c11 -Wall -Wextra -Werror -I$(CURDIR)/include $(ASAN) -c $(CURDIR)/$$f || exit 1; done
 	ar rcs $@ $(B)/asan/*.o
-$(B)/asan/test_%: tests/c/test_%.c tests/c/ffc_test.h $(B)/asan/libffc.a
+$(B)/asan/test_%: tests/c/test_%.c tests/c/ffc_test.h tests/c/engine_test.h $(B)/asan/libffc.a
 	clang -std=c11 -Wall -Wextra -Iinclude -Itests/c -Iplugin $(ASAN) $< $(B)/asan/libffc.a -lcmocka $(CLIBS) -o $@
 $(B)/fuzz/%: tests/fuzz/%.c $(B)/asan/libffc.a
 	@mkdir -p $(B)/fuzz

@@ -105,20 +105,27 @@ static int refuse(ffc_error *err, const char *msg)
     return FFC_ERR_VALUE;
 }
 
+/* the setting called name, of a word's type or a number's (word), or
+ * NULL with err naming the cause */
+static const ffc_setting *find_kind(const char *name, int word, ffc_error *err)
+{
+    char m[200];
+    const int i = ffc_setting_find(name);
+    if (i < 0) snprintf(m, sizeof m, "'%s' is not a setting", name);
+    else if ((table[i].type == FFC_SET_WORD) == word) return &table[i];
+    else if (word) snprintf(m, sizeof m, "'%s' takes a number, not a word", name);
+    else snprintf(m, sizeof m, "'%s' takes one of the words: %s", name, table[i].words);
+    refuse(err, m);
+    return NULL;
+}
+
 int ffc_settings_set(ffc_settings *s, const char *name, double v, ffc_error *err)
 {
     if (!s || !name) return FFC_ERR_NULL;
     char m[200];
-    const int i = ffc_setting_find(name);
-    if (i < 0) {
-        snprintf(m, sizeof m, "'%s' is not a setting", name);
-        return refuse(err, m);
-    }
-    const ffc_setting *t = &table[i];
-    if (t->type == FFC_SET_WORD) {
-        snprintf(m, sizeof m, "'%s' takes one of the words: %s", name, t->words);
-        return refuse(err, m);
-    }
+    const ffc_setting *t = find_kind(name, 0, err);
+    if (!t) return FFC_ERR_VALUE;
+    const long i = t - table;
     const int lo_ok = (t->open & 1) ? v > t->lo : v >= t->lo, hi_ok = (t->open & 2) ? v < t->hi : v <= t->hi;
     if (!isfinite(v) || !lo_ok || !hi_ok) {
         snprintf(m, sizeof m, "'%s' = %g is outside %c%g, %g%c", name, v, (t->open & 1) ? '(' : '[', t->lo, t->hi,
@@ -137,16 +144,9 @@ int ffc_settings_set_word(ffc_settings *s, const char *name, const char *w, ffc_
 {
     if (!s || !name || !w) return FFC_ERR_NULL;
     char m[200];
-    const int i = ffc_setting_find(name);
-    if (i < 0) {
-        snprintf(m, sizeof m, "'%s' is not a setting", name);
-        return refuse(err, m);
-    }
-    const ffc_setting *t = &table[i];
-    if (t->type != FFC_SET_WORD) {
-        snprintf(m, sizeof m, "'%s' takes a number, not a word", name);
-        return refuse(err, m);
-    }
+    const ffc_setting *t = find_kind(name, 1, err);
+    if (!t) return FFC_ERR_VALUE;
+    const long i = t - table;
     const int k = word_index(t->words, w);
     if (k < 0) {
         snprintf(m, sizeof m, "'%s' = \"%.60s\" is not one of: %s", name, w, t->words);

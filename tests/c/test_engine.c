@@ -7,7 +7,7 @@
 #include <sys/resource.h>
 
 #include "ffc_test.h"
-#include "ffc_engine.h"   /* (internal: the engines) */
+#include "engine_test.h" /* (internal: the engines) */
 
 #define N 40
 
@@ -39,25 +39,6 @@ static long spd(int ti[], int tj[], double tv[], double D[N * N])
         }
     }
     return nz;
-}
-
-typedef struct { const long *cols; long nc, nrows; double *X; } keep;
-static int keep_inv(void *ctx, long nc, const long cols[], const double V[])
-{
-    keep *k = ctx;
-    for (long c = 0; c < nc; c++) {
-        long at = 0;
-        while (at < k->nc && k->cols[at] != cols[c]) at++;
-        for (long r = 0; r < k->nrows; r++) k->X[r + at * k->nrows] = V[r + c * k->nrows];
-    }
-    return FFC_OK;
-}
-static int inverse(ffc__engine *e, long nc, const long cols[], long nrows, const long rows[], double X[])
-{
-    long c2[16];
-    memcpy(c2, cols, (size_t)nc * sizeof *c2);
-    keep k = {cols, nc, nrows, X};
-    return e->op->inverse(e, nc, c2, nrows, rows, keep_inv, &k);
 }
 
 static ffc__ranks one = {0, 0, 1, NULL};
@@ -92,7 +73,7 @@ static void test_same_solutions(void **state)
         assert_int_equal(e->op->factorize(e, &A), FFC_OK);
         assert_int_equal(e->op->solve(e, b, x), FFC_OK);
         for (int i = 0; i < N; i++) assert_close(x[i], xd[i], 1e-13);
-        assert_int_equal(inverse(e, 4, cols, 6, rows, X), FFC_OK);
+        assert_int_equal(test_inverse(e, 4, cols, 6, rows, X), FFC_OK);
         for (int i = 0; i < 24; i++) assert_close(X[i], Xd[i], 1e-13);
         assert_true(info.rcond > 0.05 && info.rcond <= 1.0);
         /* new values on the same pattern: factorized again without a new analysis */

@@ -15,7 +15,7 @@
 
 #include "ffc_test.h"
 #include "ffc_pdense.h"   /* (internal: the shared dense LU) */
-#include "ffc_engine.h"   /* (internal: the linear engines) */
+#include "engine_test.h" /* (internal: the linear engines) */
 #include "ffc_bulk.h"     /* (internal: the bulk's compliance columns) */
 
 #define NV 300
@@ -189,30 +189,6 @@ static void test_general_solve(void **state)
     assert_int_equal(ffc_parallel_solve(&chol, NG, nt, gi, gj, gv, bb, xs, &bad), FFC_ERR_UNAVAILABLE);
 }
 
-/* the engine's entries of the inverse, kept in the order asked for */
-typedef struct {
-    const long *cols;
-    long nc, nrows;
-    double *X;
-} inv_keep;
-static int keep_inv(void *ctx, long nc, const long cols[], const double V[])
-{
-    inv_keep *k = ctx;
-    for (long c = 0; c < nc; c++) {
-        long at = 0;
-        while (at < k->nc && k->cols[at] != cols[c]) at++;
-        for (long r = 0; r < k->nrows; r++) k->X[r + at * k->nrows] = V[r + c * k->nrows];
-    }
-    return FFC_OK;
-}
-static int inverse(ffc__engine *e, long nc, const long cols[], long nrows, const long rows[], double X[])
-{
-    long c2[8];
-    memcpy(c2, cols, (size_t)nc * sizeof *c2);
-    inv_keep k = {cols, nc, nrows, X};
-    return e->op->inverse(e, nc, c2, nrows, rows, keep_inv, &k);
-}
-
 /* entries of K^-1 (the MUMPS engine's inverse) on rows other than the
  * columns, in no particular order, after a dense solve (whose right-hand
  * side MUMPS must not keep on the other ranks): a dense elimination's to
@@ -237,13 +213,13 @@ static void test_inverse_entries(void **state)
     const ffc__tri K = {NI, nz, ti, tj, tv, 1};
     const long cols[3] = {7, 2, 19}, rows[5] = {0, 5, 2, 29, 7};
     double X[15], B[NI], Bx[NI];
-    assert_int_equal(inverse(m, 3, cols, 5, rows, X), FFC_ERR_EMPTY);
+    assert_int_equal(test_inverse(m, 3, cols, 5, rows, X), FFC_ERR_EMPTY);
     assert_string_equal(m->err.msg, "MUMPS: not factorized");
     assert_int_equal(m->op->analyze(m, &K), FFC_OK);
     assert_int_equal(m->op->factorize(m, &K), FFC_OK);
     for (int i = 0; i < NI; i++) B[i] = 1.0;
     assert_int_equal(m->op->solve(m, B, Bx), FFC_OK);
-    assert_int_equal(inverse(m, 3, cols, 5, rows, X), FFC_OK);
+    assert_int_equal(test_inverse(m, 3, cols, 5, rows, X), FFC_OK);
     for (int c = 0; c < 3; c++) {
         double e[NI] = {0}, x[NI];
         e[cols[c]] = 1.0;
@@ -251,10 +227,10 @@ static void test_inverse_entries(void **state)
         for (int r = 0; r < 5; r++) assert_close(X[r + 5 * c], x[rows[r]], 1e-13);
     }
     const long twice[2] = {3, 3}, out[1] = {NI};
-    assert_int_equal(inverse(m, 2, twice, 5, rows, X), FFC_ERR_VALUE);
-    assert_int_equal(inverse(m, 3, cols, 2, twice, X), FFC_ERR_VALUE);
-    assert_int_equal(inverse(m, 3, cols, 1, out, X), FFC_ERR_INDEX);
-    assert_int_equal(inverse(m, 1, out, 5, rows, X), FFC_ERR_INDEX);
+    assert_int_equal(test_inverse(m, 2, twice, 5, rows, X), FFC_ERR_VALUE);
+    assert_int_equal(test_inverse(m, 3, cols, 2, twice, X), FFC_ERR_VALUE);
+    assert_int_equal(test_inverse(m, 3, cols, 1, out, X), FFC_ERR_INDEX);
+    assert_int_equal(test_inverse(m, 1, out, 5, rows, X), FFC_ERR_INDEX);
     /* and a dense solve after it */
     for (int i = 0; i < NI; i++) B[i] = 1.0;
     assert_int_equal(m->op->solve(m, B, Bx), FFC_OK);
@@ -271,7 +247,7 @@ static void test_inverse_entries(void **state)
         double Y[15];
         assert_int_equal(others[k]->op->analyze(others[k], &K), FFC_OK);
         assert_int_equal(others[k]->op->factorize(others[k], &K), FFC_OK);
-        assert_int_equal(inverse(others[k], 3, cols, 5, rows, Y), FFC_OK);
+        assert_int_equal(test_inverse(others[k], 3, cols, 5, rows, Y), FFC_OK);
         for (int e = 0; e < 15; e++) assert_close(Y[e], X[e], 1e-14);
         others[k]->op->free(others[k]);
     }
