@@ -210,7 +210,12 @@ struct SceneData {
     std::vector<std::vector<long>> tetS, tetM; // per pair: the tetrahedron behind each slave / master facet
     ffc_newton_info newton{};  // the last ffcNewton
     std::vector<double> ntsM;  // ffcNTSSolve's multipliers, kept at the largest row count met (one call per solve)
-    ~SceneData() { ffc_scene_free(s); }
+    ffc_full *full = nullptr;  // ffcFullSolve's solver (its analysed pattern)
+    ~SceneData()
+    {
+        ffc_full_free(full);
+        ffc_scene_free(s);
+    }
 };
 
 } // namespace ffc_shim
@@ -295,6 +300,8 @@ long sceneNewton(const Named &nm, FFScene *const &C, KN<double> *const &r, KN<do
                  KN<double> *const &hist);
 double sceneSolverStat(const Named &, FFScene *const &C, string *const &name);
 long parallelSolve(Matrice_Creuse<double> *const &A, KN<double> *const &b, KN<double> *const &x);
+long sceneFullSolve(const Named &, FFScene *const &C, Matrice_Creuse<double> *const &A, KN<double> *const &b,
+                    KN<double> *const &x);
 long parallelSolveOwn(Matrice_Creuse<double> *const &A, KN<double> *const &b, KN<double> *const &x, const long &own);
 long sceneNtsStep(const Named &, FFScene *const &C);
 long sceneRows(const Named &, FFScene *const &C, KN<double> *const &u, KN<double> *const &fixed,

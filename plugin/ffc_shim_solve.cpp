@@ -330,6 +330,35 @@ long parallelSolveOwn(Matrice_Creuse<double> *const &A, KN<double> *const &b, KN
     return 0;
 }
 
+// ffcFullSolve(C, A, b, x): x = A^-1 b for a general sparse A of the
+// scene's size or any other (a full Newton system, a saddle matrix, the
+// mass matrix) by UMFPACK in C, the pattern's analysis kept for the next
+// call with the same pattern; 0 solved, 1 singular (an exactly zero pivot;
+// the caller checks the residual, as a tiny pivot gives a huge x)
+long sceneFullSolve(const Named &, FFScene *const &C, Matrice_Creuse<double> *const &A, KN<double> *const &b,
+                    KN<double> *const &x)
+{
+    const char *fn = "ffcFullSolve";
+    SceneData &d = need_scene(fn, C);
+    std::vector<long> Ti, Tj;
+    std::vector<double> Tv;
+    const long n = matrix_triplets(fn, "A", A, Ti, Tj, Tv);
+    if (!b) fail(fn, "argument 'b': array is not defined");
+    if (b->N() != n) fail(fn, "argument 'b': size " + std::to_string(b->N()) + ", expected " + std::to_string(n));
+    need_finite(fn, "b", b);
+    if (!x) fail(fn, "argument 'x': array is not defined");
+    if (!d.full && ffc_full_create(&d.full)) fail(fn, "out of memory for the full solver");
+    std::vector<double> bv(n), xv(n);
+    for (long i = 0; i < n; i++) bv[i] = (*b)[i];
+    ffc_error err = {};
+    const int st = ffc_full_solve(d.full, n, (long)Ti.size(), Ti.data(), Tj.data(), Tv.data(), bv.data(), xv.data(), &err);
+    if (st == FFC_ERR_SINGULAR) return 1;
+    if (st) fail(fn, std::string("argument 'A': ") + err.msg);
+    x->resize(n);
+    for (long i = 0; i < n; i++) (*x)[i] = xv[i];
+    return 0;
+}
+
 // Node-to-surface pairs. ffcNTSStep(C): a new load step (per-step flips,
 // kept facets and forces cleared). ffcRows(C, u, fixed, B, Bf, Cm, c): the
 // constraint rows of every node-to-surface pair at u (see ffc_nts_rows),
