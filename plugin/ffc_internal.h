@@ -59,6 +59,29 @@ int ffc__lu_solve(long m, double A[], long piv[], double b[]);
  * outside [0, n) or a non-finite value among (Ti, Tj, Tv)[nt], else FFC_OK */
 int ffc__check_triplets(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long *bad);
 
+/* Straight-sided tetrahedra (ffc_tet.c).  FreeFEM's edge order of a P2
+ * tetrahedron's nodes 4..9: 01 02 03 12 13 23. */
+extern const int ffc__tet_edge[6][2];
+/* the position of j in the ascending list c[n] (present by construction) */
+long ffc__find_long(const long c[], long n, long j);
+/* The node graph of the tetrahedra's nodes E[nt*npe] (nn nodes): row i
+ * lists i and the nodes that share a tetrahedron with it, ascending, each
+ * once, in adj[rp[i] .. rp[i] + fill[i]) (rp[nn]: their count, returned).
+ * Sizes: rp[nn + 1], fill[nn + 1], adj[npe (npe - 1) nt + nn + 1] (the
+ * rows are compacted in place). */
+long ffc__tet_graph(long nt, long npe, long nn, const long E[], long rp[], long adj[], long fill[]);
+/* Tetrahedron v[4]'s barycentric gradients g (g[0] = -(g[1] + g[2] +
+ * g[3])) and volume *V; FFC_ERR_DEGENERATE for a zero volume (|det J| <=
+ * 1e-13 |e1| |e2| |e3|) */
+int ffc__tet_gradients(const double X[], const long v[4], double g[4][3], double *V);
+/* The gradients G[npe] of the shape functions at the barycentric point L
+ * (npe 4: the g themselves; 10: N_a = L_a (2 L_a - 1) at the vertices, 4
+ * L_p L_q on edge pq) */
+void ffc__tet_shape_gradients(long npe, const double g[4][3], const double L[4], double G[10][3]);
+/* The 14-point rule of degree 5 (FreeFEM's qfV5): points L, weights w as
+ * fractions of the volume; returns 14 */
+int ffc__tet_rule5(double L[14][4], double w[14]);
+
 /* Six times the signed volume of each tetrahedron T[nt*4] at X (v0[nt]),
  * and ffc_volume_check against them (corner indices already checked):
  * the reference volumes computed once instead of at each check. */

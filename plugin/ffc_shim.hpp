@@ -211,6 +211,11 @@ struct SceneData {
     ffc_newton_info newton{};  // the last ffcNewton
     std::vector<double> ntsM;  // ffcNTSSolve's multipliers, kept at the largest row count met (one call per solve)
     ffc_full *full = nullptr;  // ffcFullSolve's solver (its analysed pattern)
+    // the hyperelastic bulk (ffcHyperForce, ffcHyperTangent): its node graph
+    // (ffc_tets_pattern: rp[nn + 1], adj[nb]) and the tangent's rows and
+    // columns (9 nb), made at the first call
+    std::vector<long> hrp, hadj, hKi, hKj;
+    std::vector<double> hKv;
     ~SceneData()
     {
         ffc_full_free(full);
@@ -291,6 +296,10 @@ long sceneSurfaceDofs(const Named &, FFScene *const &C, KN<double> *const &mask)
 
 // the calls of ffc_shim_solve.cpp
 long massSpread(Matrice_Creuse<double> *const &M, KN<double> *const &spread, Matrice_Creuse<double> *const &T);
+double sceneHyperForce(const Named &, FFScene *const &C, KN<double> *const &u, KN<double> *const &l1, KN<double> *const &l2,
+                       KN<double> *const &f);
+long sceneHyperTangent(const Named &, FFScene *const &C, KN<double> *const &u, KN<double> *const &l1, KN<double> *const &l2,
+                       Matrice_Creuse<double> *const &K);
 long sceneElastic(const Named &, FFScene *const &C, Matrice_Creuse<double> *const &K, KN<double> *const &l1,
                   KN<double> *const &l2);
 long sceneBulk(const Named &nm, FFScene *const &C, Matrice_Creuse<double> *const &K);

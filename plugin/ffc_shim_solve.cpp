@@ -93,6 +93,101 @@ long sceneElastic(const Named &, FFScene *const &C, Matrice_Creuse<double> *cons
     return nnz;
 }
 
+// The scene's hyperelastic bulk (bulk = "neohookean" or "svk"; ffc_hyper_assemble
+// on [P1,P1,P1] or [P2,P2,P2]), at the displacement u (3 dofs per node),
+// with Lame's constants per tetrahedron (P0 arrays):
+//   ffcHyperForce(C, u, lame1, lame2, f): f = its internal force int P : grad v
+//     (no loads, no Dirichlet rows); returns the stored energy int W;
+//   ffcHyperTangent(C, u, lame1, lame2, K): K = the force's derivative (both
+//     triangles); returns its entries.
+// The node graph is made once per scene.
+namespace {
+int hyper_law(const char *fn, SceneData &d)
+{
+    ffc_bulk_law l;
+    ffc_scene_law(d.s, &l);
+    if (l.kind == FFC_BULK_NEOHOOKEAN) return FFC_HYPER_NEOHOOKEAN;
+    if (l.kind == FFC_BULK_SVK) return FFC_HYPER_SVK;
+    fail(fn, "argument 'C': the scene's bulk is not hyperelastic (made with bulk = \"neohookean\" or \"svk\")");
+}
+ffc_tets hyper_mesh(SceneData &d)
+{
+    return ffc_tets{d.m.nv, d.m.X.data(), d.m.nt, d.m.T.data(), d.order == 2 ? 10 : 4, d.nn,
+                    d.order == 2 ? d.p2.node.data() : d.m.T.data()};
+}
+// the arguments u, lame1, lame2 checked; the node graph made at the first call
+void hyper_prepare(const char *fn, SceneData &d, KN<double> *u, KN<double> *l1, KN<double> *l2)
+{
+    if (!u) fail(fn, "argument 'u': array is not defined");
+    if (u->N() != 3 * d.nn) {
+        std::ostringstream s;
+        s << "argument 'u': size " << u->N() << ", expected " << 3 * d.nn << " (3 dofs per node of the scene's displacement space)";
+        fail(fn, s.str());
+    }
+    need_finite(fn, "u", u);
+    need_lame(fn, d, l1, l2);
+    if (!d.hrp.empty()) return;
+    const ffc_tets m = hyper_mesh(d);
+    std::vector<long> rp(d.nn + 1), adj;
+    long nb = 0;
+    ffc_error err;
+    int st = ffc_tets_pattern(&m, 0, rp.data(), nullptr, &nb, &err);
+    if (st == FFC_ERR_CAPACITY) {
+        adj.resize(nb);
+        st = ffc_tets_pattern(&m, nb, rp.data(), adj.data(), &nb, &err);
+    }
+    if (st) fail(fn, std::string("the node graph: ") + err.msg);
+    d.hKi.resize(9 * nb); d.hKj.resize(9 * nb); d.hKv.resize(9 * nb);
+    ffc_tets_pattern_ij(d.nn, rp.data(), adj.data(), d.hKi.data(), d.hKj.data());
+    d.hrp.swap(rp);
+    d.hadj.swap(adj);
+}
+// an error of ffc_hyper_assemble, named by the argument it comes from
+[[noreturn]] void hyper_fail(const char *fn, const ffc_error &err)
+{
+    const char *arg = err.status == FFC_ERR_INVERTED || err.where == FFC_AT_DOF ? "u"
+                      : err.status == FFC_ERR_NONFINITE && err.where == FFC_AT_ELEMENT ? "lame1, lame2" : "C";
+    fail(fn, std::string("argument '") + arg + "': " + err.msg);
+}
+} // namespace
+
+double sceneHyperForce(const Named &, FFScene *const &C, KN<double> *const &u, KN<double> *const &l1, KN<double> *const &l2,
+                       KN<double> *const &f)
+{
+    const char *fn = "ffcHyperForce";
+    SceneData &d = need_scene(fn, C);
+    const int law = hyper_law(fn, d);
+    if (!f) fail(fn, "argument 'f': array is not defined");
+    hyper_prepare(fn, d, u, l1, l2);
+    const ffc_tets m = hyper_mesh(d);
+    std::vector<double> fv(3 * d.nn);
+    double W = 0;
+    ffc_error err;
+    if (ffc_hyper_assemble(law, &m, &(*l1)[0], &(*l2)[0], &(*u)[0], d.hrp.data(), d.hadj.data(), &W, fv.data(), nullptr, &err))
+        hyper_fail(fn, err);
+    f->resize(3 * d.nn);
+    for (long k = 0; k < 3 * d.nn; k++) (*f)[k] = fv[k];
+    return W;
+}
+
+long sceneHyperTangent(const Named &, FFScene *const &C, KN<double> *const &u, KN<double> *const &l1, KN<double> *const &l2,
+                       Matrice_Creuse<double> *const &K)
+{
+    const char *fn = "ffcHyperTangent";
+    SceneData &d = need_scene(fn, C);
+    const int law = hyper_law(fn, d);
+    if (!K) fail(fn, "argument 'K': matrix is not defined");
+    hyper_prepare(fn, d, u, l1, l2);
+    const ffc_tets m = hyper_mesh(d);
+    ffc_error err;
+    if (ffc_hyper_assemble(law, &m, &(*l1)[0], &(*l2)[0], &(*u)[0], d.hrp.data(), d.hadj.data(), nullptr, nullptr,
+                           d.hKv.data(), &err))
+        hyper_fail(fn, err);
+    const long nz = (long)d.hKv.size();
+    set_matrix(3 * d.nn, nz, d.hKi.data(), d.hKj.data(), d.hKv.data(), false, K);
+    return nz;
+}
+
 long sceneBulk(const Named &nm, FFScene *const &C, Matrice_Creuse<double> *const &K)
 {
     const char *fn = "ffcBulk";

@@ -43,6 +43,8 @@ void init_scene()
     typedef Matrice_Creuse<double> *M;
     Global.Add("ffcBulk", "(", named<long, S, M>("ffcBulk", bulk_names, 1, sceneBulk));
     Global.Add("ffcElastic", "(", named<long, S, M, V, V>("ffcElastic", nullptr, 0, sceneElastic));
+    Global.Add("ffcHyperForce", "(", named<double, S, V, V, V, V>("ffcHyperForce", nullptr, 0, sceneHyperForce));
+    Global.Add("ffcHyperTangent", "(", named<long, S, V, V, V, M>("ffcHyperTangent", nullptr, 0, sceneHyperTangent));
     Global.Add("ffcSolve", "(", named<long, S, M, V, V>("ffcSolve", nullptr, 0, sceneSolve));
     Global.Add("ffcFullSolve", "(", named<long, S, M, V, V>("ffcFullSolve", nullptr, 0, sceneFullSolve));
     Global.Add("ffcNTSSolve", "(", named<long, S, V, V, V, V, V>("ffcNTSSolve", nullptr, 0, sceneNTSSolve));

@@ -92,6 +92,57 @@ int ffc_elastic_p2(long nv, const double X[], long nt, const long T[], long nn, 
                    const double lam[], const double mu[], long cap, long Ki[], long Kj[], double Kv[], long *nnz,
                    long *bad);
 
+/* ------------------------------------------------ hyperelasticity */
+/* A volume mesh of straight-sided tetrahedra and the nodes of its
+ * displacement field (dof 3 i + c: component c of node i). */
+typedef struct {
+    long nv;          /* vertices */
+    const double *X;  /* [3 nv] their coordinates */
+    long nt;          /* tetrahedra */
+    const long *T;    /* [4 nt] their vertices */
+    long npe;         /* nodes per tetrahedron: 4 (P1) or 10 (P2, FreeFEM's order: vertices, edges 01 02 03 12 13 23) */
+    long nn;          /* nodes of the displacement field */
+    const long *E;    /* [npe nt] each tetrahedron's nodes (P1: T itself) */
+} ffc_tets;
+
+/* The hyperelastic laws, each of Lame's lambda and mu (its linearization
+ * at F = I is linear elasticity of the same constants). */
+enum {
+    FFC_HYPER_NEOHOOKEAN = 1, /* W = mu/2 (F:F - 3) - mu ln J + lambda/2 (ln J)^2 (J = det F > 0) */
+    FFC_HYPER_SVK = 2         /* Saint Venant-Kirchhoff: W = lambda/2 (tr E)^2 + mu E:E, E = (F^T F - I)/2 */
+};
+
+/* The pointwise law at the deformation gradient F[9] (row-major, F_iJ at
+ * 3 i + J): the energy density *W, the first Piola-Kirchhoff stress P[9]
+ * and, unless A is NULL, its derivative A[81] = dP_iJ / dF_kL at 27 i + 9
+ * J + 3 k + L.  FFC_ERR_INVERTED for the Neo-Hookean law at det F <= 0,
+ * FFC_ERR_VALUE for an unknown law. */
+int ffc_hyper_point(int law, double lam, double mu, const double F[9], double *W, double P[9], double A[81]);
+
+/* The node graph of the mesh's nodes: row i lists node i and the nodes
+ * that share a tetrahedron with it, ascending, in adj[rp[i] .. rp[i + 1])
+ * (rp[nn + 1]; adj[cap], *nb entries needed, FFC_ERR_CAPACITY when cap is
+ * smaller).  The matrices of the operators below have 9 *nb entries: dof
+ * row 3 i + c holds 3 (rp[i + 1] - rp[i]) of them from 9 rp[i] + 3 c
+ * (rp[i + 1] - rp[i]), their columns ascending (ffc_tets_pattern_ij
+ * writes each entry's row and column). */
+int ffc_tets_pattern(const ffc_tets *m, long cap, long rp[], long adj[], long *nb, ffc_error *err);
+void ffc_tets_pattern_ij(long nn, const long rp[], const long adj[], long Ki[], long Kj[]);
+
+/* The hyperelastic operator at the displacement u[3 nn], total
+ * Lagrangian on the reference mesh m: the stored energy *W, the internal
+ * force f[3 nn] (int P : grad v) and its tangent Kv[9 rp[nn]] on the
+ * pattern (rp, adj) of ffc_tets_pattern; any of W, f, Kv may be NULL
+ * (not computed).  Lame's constants lam[nt], mu[nt] per tetrahedron.
+ * Quadrature: one point on P1 (F is constant), FreeFEM's qfV5 (14 points,
+ * degree 5) on P2.  Errors (err: the tetrahedron, dof or node):
+ * FFC_ERR_INVERTED (det F <= 0 at a point of the Neo-Hookean law),
+ * FFC_ERR_DEGENERATE (a tetrahedron of no volume), FFC_ERR_NONFINITE,
+ * FFC_ERR_INDEX (a node outside the mesh or the pattern), FFC_ERR_VALUE
+ * (an unknown law). */
+int ffc_hyper_assemble(int law, const ffc_tets *m, const double lam[], const double mu[], const double u[],
+                       const long rp[], const long adj[], double *W, double f[], double Kv[], ffc_error *err);
+
 /* ------------------------------------------------ mass redistribution */
 /* The interpolation T (n x n) of a redistributed mass M_red = T' M T for
  * contact dynamics: row i is e_i for a dof off the contact surfaces

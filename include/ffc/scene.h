@@ -92,7 +92,8 @@ ffc_linesearch *ffc_scene_line_search(ffc_scene *s);
 typedef enum {
     FFC_BULK_LINEAR = 0,      /* linear elasticity (small strain) */
     FFC_BULK_NEOHOOKEAN = 1,  /* compressible Neo-Hookean (finite deformation, total Lagrangian) */
-    FFC_BULK_USER = 2         /* the scene's own residual and tangent */
+    FFC_BULK_USER = 2,        /* the scene's own residual and tangent */
+    FFC_BULK_SVK = 3          /* Saint Venant-Kirchhoff (finite deformation, total Lagrangian) */
 } ffc_bulk_kind;
 typedef struct {
     ffc_bulk_kind kind;

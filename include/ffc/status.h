@@ -25,7 +25,7 @@ enum {
     FFC_ERR_LABEL = -11,          /* a label that no boundary face carries */
     FFC_ERR_VALUE = -12,          /* a parameter outside its admissible range */
     FFC_ERR_MEMORY = -13,         /* allocation failed */
-    FFC_ERR_INVERTED = -14,       /* a facet turned inside out (normal reversed) */
+    FFC_ERR_INVERTED = -14,       /* a facet or tetrahedron turned inside out (normal reversed, det F <= 0) */
     FFC_ERR_SINGULAR = -15,       /* a linear system is singular (zero pivot) */
     FFC_ERR_FUSED = -16,          /* slave and master surfaces share their nodes */
     FFC_ERR_UNAVAILABLE = -17,    /* this build lacks the engine asked for (MPI, MUMPS) */
@@ -44,7 +44,8 @@ typedef enum {
     FFC_AT_LINK,       /* a contact link */
     FFC_AT_PAIR,       /* a contact pair */
     FFC_AT_TRIPLET,    /* an entry of a triplet list */
-    FFC_AT_COUNT       /* not a position: the count or size needed */
+    FFC_AT_COUNT,      /* not a position: the count or size needed */
+    FFC_AT_ELEMENT     /* a tetrahedron of the volume mesh */
 } ffc_where;
 
 /* A failure's record: its status, what failed (an index and what it
@@ -73,7 +74,7 @@ typedef struct {
  *   multipliers), ffc_scene_points, ffc_scene_multipliers (*n),
  *   ffc_rigid_free, ffc_scene_free_motions (*n), ffc_reduced_missing
  *   (*nout), ffc_elastic_p1, ffc_elastic_p2 (*nnz), ffc_mass_spread (*nt),
- *   ffc_mpi_gather_triplets (*total).
+ *   ffc_mpi_gather_triplets (*total), ffc_tets_pattern (*nb).
  * Other functions say in their own comments how their outputs are sized. */
 
 #ifdef __cplusplus
