@@ -111,7 +111,7 @@ static int chol_analyze(ffc__engine *e, const ffc__tri *A)
 int ffc__chol_conditioned(ffc__chol *c)
 {
     c->base.info->rcond = cholmod_rcond(c->L, &c->cc);
-    return c->base.info->rcond >= 1e-12 ? FFC_OK : FFC_ERR_SINGULAR;
+    return c->base.info->rcond >= c->min_rcond ? FFC_OK : FFC_ERR_SINGULAR;
 }
 
 int ffc__chol_numeric(ffc__chol *c, cholmod_sparse *A)
@@ -143,7 +143,7 @@ static int chol_factorize(ffc__engine *e, const ffc__tri *A)
     st = agree(c, st);   /* (a shared factor: one rank short of memory is every rank's failure) */
     if (st == FFC_ERR_SINGULAR)
         return ffc__engine_fail(e, st, FFC_AT_NONE, -1, "CHOLMOD: the matrix is not positive definite or its "
-                                "estimated reciprocal condition %.3g is below 1e-12", e->info->rcond);
+                                "estimated reciprocal condition %.3g is below %.3g", e->info->rcond, c->min_rcond);
     if (st)
         return ffc__engine_fail(e, st, FFC_AT_COUNT, A->n, "CHOLMOD: out of memory factorizing a matrix of order "
                                 "%ld with %ld entries", A->n, A->nz);
@@ -396,6 +396,11 @@ void ffc__cholmod_set_mode(ffc__engine *e, int supernodal, int prune)
     c->prune = prune != 0;
 }
 
+void ffc__cholmod_set_rcond(ffc__engine *e, double min_rcond)
+{
+    if (e && e->op->analyze == chol_analyze) ((ffc__chol *)e)->min_rcond = min_rcond;
+}
+
 void ffc__cholmod_mode(const ffc__engine *e, int *supernodal, double *pruned)
 {
     const ffc__chol *c = e && e->op->analyze == chol_analyze ? (const ffc__chol *)e : NULL;
@@ -417,6 +422,7 @@ int ffc__cholmod_create(ffc_solve_info *info, ffc__ranks *ranks, ffc__engine **o
     c->base.err.index = -1;
     c->rk = ranks;
     c->prune = 1;
+    c->min_rcond = 1e-12;
     info->ranks = ranks->size;
     info->factor_ranks = info->factor_split = 1;
     ffc__chol_node_init(c);

@@ -41,6 +41,8 @@ typedef struct {
     double *sw;                /* [swcap] work: a supernode's rows below its diagonal block x FFC__BLOCK */
     long swcap;
     double pshare;             /* the share of L's entries the last pruned backward solves visited */
+    double min_rcond;          /* a factor of estimated reciprocal condition below it is singular (1e-12;
+                                  0: only a failed factorization is, for matrices with tgv rows) */
 } ffc__chol;
 
 /* ffc_eng_split.c */
@@ -56,7 +58,7 @@ int ffc__chol_split_solve(ffc__chol *c, const double rhs[], double y[]);
 void ffc__chol_split_free(ffc__chol *c);
 
 /* ffc_eng_cholmod.c */
-/* c->base.info->rcond of the numeric c->L; FFC_ERR_SINGULAR below 1e-12 */
+/* c->base.info->rcond of the numeric c->L; FFC_ERR_SINGULAR below c->min_rcond */
 int ffc__chol_conditioned(ffc__chol *c);
 /* the numeric factorization of A into the analysed c->L on this rank alone */
 int ffc__chol_numeric(ffc__chol *c, cholmod_sparse *A);

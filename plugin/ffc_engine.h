@@ -90,6 +90,10 @@ int ffc__mumps_create(ffc_solve_info *info, int fcomm, int sym, ffc__engine **ou
  * rows asked for; 0: whole back-solves); whether the factor is supernodal
  * and the share of its entries the last pruned backward solves visited. */
 void ffc__cholmod_set_mode(ffc__engine *e, int supernodal, int prune);
+/* the reciprocal condition below which a factor is singular (1e-12; 0:
+ * only a factorization that fails is, as for a matrix whose Dirichlet
+ * rows hold FreeFEM's tgv on the diagonal) */
+void ffc__cholmod_set_rcond(ffc__engine *e, double min_rcond);
 void ffc__cholmod_mode(const ffc__engine *e, int *supernodal, double *pruned);
 /* MUMPS only: a general matrix's one-off solve A x = b on the ranks of
  * fcomm, each passing the same entries or (own = 1) its own (A their sum). */

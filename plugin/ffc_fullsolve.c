@@ -1,7 +1,8 @@
 /* ffc_fullsolve.c: a full Newton system A x = b (general sparse: not
  * symmetric with friction, indefinite with multipliers) on a linear
- * engine: UMFPACK in one process, analysed once per pattern; parallel
- * MUMPS over the ranks of a communicator. */
+ * engine: in one process CHOLMOD for a symmetric positive definite one,
+ * UMFPACK otherwise, each analysed once per pattern; parallel MUMPS over
+ * the ranks of a communicator. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -62,13 +63,36 @@ int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], 
     return st;
 }
 
-/* A full solver: the engine and the pattern it analysed. */
+/* An engine and the pattern it analysed: by columns, rows ascending, as
+ * the triplets (pi, pj)[nz] handed to it, with the values' buffer pv[nz].
+ * A matrix whose entries all lie in that pattern is handed over on it
+ * (zeros elsewhere): one analysis serves every matrix of a Newton solve
+ * whose contact couples no new dofs. */
+typedef struct {
+    ffc__engine *eng;
+    long n, nz;                /* the order and the entries of the analysed pattern (0: none) */
+    long *cp;                  /* [n + 1] column starts in pi */
+    int *pi, *pj;              /* [nz] each entry's row and column */
+    double *pv;                /* [nz] the values of the matrix at hand */
+} pattern_engine;
+
+/* A full solver: UMFPACK for any matrix, CHOLMOD for the symmetric ones
+ * (their lower triangle), each with the pattern it analysed. */
 struct ffc_full {
-    ffc__engine *eng;          /* UMFPACK */
-    ffc_solve_info info;       /* its counters */
-    long n, nt;                /* the order and the entries of the analysed pattern */
-    long *pi, *pj;             /* [nt] its indices */
-    long analyses;             /* patterns analysed (count) */
+    pattern_engine lu, chol;   /* a general matrix (its LU), a symmetric one (its LL^T) */
+    int lu_ready;              /* 1: lu's engine analysed lu's present pattern */
+    ffc__engine *prec;         /* the engine holding the last factor of a general matrix (NULL: none) */
+    ffc__ranks one;            /* CHOLMOD's ranks: this process */
+    long one_count;            /* (its count array) */
+    ffc_solve_info info;       /* the counters of both */
+    long analyses;             /* patterns analysed, both engines (count) */
+    long cholesky;             /* factorizations by CHOLMOD (count) */
+    long not_posdef;           /* symmetric matrices CHOLMOD found not positive definite, solved by UMFPACK */
+    long reuse;                /* GMRES iterations at most on the last factor before a new one (0: none) */
+    long reused;               /* solves by GMRES on an earlier factor (count) */
+    long krylov;               /* their iterations (count) */
+    double *work;              /* [wcap] GMRES's basis and work */
+    long wcap;
 };
 
 int ffc_full_create(ffc_full **out)
@@ -76,48 +100,283 @@ int ffc_full_create(ffc_full **out)
     if (!out) return FFC_ERR_NULL;
     ffc_full *f = calloc(1, sizeof *f);
     if (!f) return FFC_ERR_MEMORY;
-    const int st = ffc__umfpack_create(&f->info, &f->eng);
-    if (st) { free(f); return st; }
+    f->one = (ffc__ranks){0, 0, 1, &f->one_count};
+    int st = ffc__umfpack_create(&f->info, &f->lu.eng);
+    if (!st) st = ffc__cholmod_create(&f->info, &f->one, &f->chol.eng);
+    if (st) { ffc_full_free(f); return st; }
+    ffc__cholmod_set_rcond(f->chol.eng, 0.0);   /* (tgv rows: the caller checks the residual) */
     *out = f;
     return FFC_OK;
+}
+
+static void pattern_free(pattern_engine *p)
+{
+    free(p->cp); free(p->pi); free(p->pj); free(p->pv);
+    p->cp = NULL;
+    p->pi = p->pj = NULL;
+    p->pv = NULL;
+    p->n = p->nz = 0;
 }
 
 void ffc_full_free(ffc_full *f)
 {
     if (!f) return;
-    if (f->eng) f->eng->op->free(f->eng);
-    free(f->pi); free(f->pj);
+    if (f->lu.eng) f->lu.eng->op->free(f->lu.eng);
+    if (f->chol.eng) f->chol.eng->op->free(f->chol.eng);
+    pattern_free(&f->lu);
+    pattern_free(&f->chol);
+    free(f->work);
     free(f);
 }
 
-/* 1 when (Ti, Tj)[nt] is the analysed pattern */
-static int same_pattern(const ffc_full *f, long n, long nt, const long Ti[], const long Tj[])
+/* the position of row i in column j of p's pattern, or -1 */
+static long find_entry(const pattern_engine *p, int i, int j)
 {
-    if (!f->pi || n != f->n || nt != f->nt) return 0;
-    return memcmp(Ti, f->pi, (size_t)nt * sizeof *Ti) == 0 && memcmp(Tj, f->pj, (size_t)nt * sizeof *Tj) == 0;
+    long lo = p->cp[j], hi = p->cp[j + 1] - 1;
+    while (lo <= hi) {
+        const long mid = (lo + hi) / 2;
+        if (p->pi[mid] < i) lo = mid + 1;
+        else if (p->pi[mid] > i) hi = mid - 1;
+        else return mid;
+    }
+    return -1;
 }
 
-static int keep_pattern(ffc_full *f, long n, long nt, const long Ti[], const long Tj[])
+/* A's values on p's pattern (p->pv); 0 when an entry of A lies outside it */
+static int scatter(pattern_engine *p, const ffc__tri *A)
 {
-    free(f->pi); free(f->pj);
-    f->pi = malloc((size_t)(nt > 0 ? nt : 1) * sizeof *f->pi);
-    f->pj = malloc((size_t)(nt > 0 ? nt : 1) * sizeof *f->pj);
-    if (!f->pi || !f->pj) {
-        free(f->pi); free(f->pj);
-        f->pi = f->pj = NULL;
-        return FFC_ERR_MEMORY;
+    if (!p->cp || p->n != A->n) return 0;
+    memset(p->pv, 0, (size_t)p->nz * sizeof *p->pv);
+    for (long k = 0; k < A->nz; k++) {
+        const long e = find_entry(p, A->i[k], A->j[k]);
+        if (e < 0) return 0;
+        p->pv[e] += A->v[k];
     }
-    if (nt > 0) {
-        memcpy(f->pi, Ti, (size_t)nt * sizeof *Ti);
-        memcpy(f->pj, Tj, (size_t)nt * sizeof *Tj);
+    return 1;
+}
+
+/* p's pattern made the union of its own (when of the same order) and
+ * A's, A's values scattered on it */
+static int grow_pattern(pattern_engine *p, const ffc__tri *A)
+{
+    const long n = A->n, old = p->n == n ? p->nz : 0;
+    long *cnt = calloc((size_t)n + 1, sizeof *cnt);
+    int *ri = malloc((size_t)(A->nz + old + 1) * sizeof *ri);
+    if (!cnt || !ri) { free(cnt); free(ri); return FFC_ERR_MEMORY; }
+    for (long k = 0; k < A->nz; k++) cnt[A->j[k] + 1]++;
+    for (long j = 0; j < n && old; j++) cnt[j + 1] += p->cp[j + 1] - p->cp[j];
+    for (long j = 0; j < n; j++) cnt[j + 1] += cnt[j];
+    long *fill = malloc((size_t)(n + 1) * sizeof *fill);
+    if (!fill) { free(cnt); free(ri); return FFC_ERR_MEMORY; }
+    memcpy(fill, cnt, (size_t)(n + 1) * sizeof *fill);
+    for (long j = 0; j < n && old; j++)
+        for (long e = p->cp[j]; e < p->cp[j + 1]; e++) ri[fill[j]++] = p->pi[e];
+    for (long k = 0; k < A->nz; k++) ri[fill[A->j[k]]++] = A->i[k];
+    /* each column sorted, its duplicates dropped, compacted */
+    long nz = 0;
+    for (long j = 0; j < n; j++) {
+        int *c = ri + cnt[j];
+        const long m = cnt[j + 1] - cnt[j];
+        for (long a = 1; a < m; a++) { /* insertion sort: columns hold a few dozen rows */
+            const int v = c[a];
+            long b = a - 1;
+            while (b >= 0 && c[b] > v) { c[b + 1] = c[b]; b--; }
+            c[b + 1] = v;
+        }
+        const long start = nz;
+        for (long a = 0; a < m; a++)
+            if (a == 0 || c[a] != c[a - 1]) ri[nz++] = c[a];
+        cnt[j] = start;
     }
-    f->n = n;
-    f->nt = nt;
-    f->analyses++;
+    cnt[n] = nz;
+    free(fill);
+    pattern_free(p);
+    p->cp = cnt;
+    p->pi = ri;
+    p->pj = malloc((size_t)(nz > 0 ? nz : 1) * sizeof *p->pj);
+    p->pv = malloc((size_t)(nz > 0 ? nz : 1) * sizeof *p->pv);
+    if (!p->pj || !p->pv) { pattern_free(p); return FFC_ERR_MEMORY; }
+    for (long j = 0; j < n; j++)
+        for (long e = cnt[j]; e < cnt[j + 1]; e++) p->pj[e] = (int)j;
+    p->n = n;
+    p->nz = nz;
+    scatter(p, A);
     return FFC_OK;
 }
 
-int ffc_full_solve(ffc_full *f, long n, long nt, const long Ti[], const long Tj[], const double Tv[],
+/* y[n] = A x on p's pattern and values (by columns) */
+static void pattern_mult(const pattern_engine *p, const double x[], double y[])
+{
+    memset(y, 0, (size_t)p->n * sizeof *y);
+    for (long j = 0; j < p->n; j++) {
+        const double xj = x[j];
+        if (xj == 0.0) continue;
+        for (long e = p->cp[j]; e < p->cp[j + 1]; e++) y[p->pi[e]] += p->pv[e] * xj;
+    }
+}
+
+static double norm2(long n, const double x[])
+{
+    double s = 0.0;
+    for (long i = 0; i < n; i++) s += x[i] * x[i];
+    return sqrt(s);
+}
+
+/* Formulation: A x = b for A on p's pattern (its values p->pv) by GMRES,
+ * right-preconditioned with the factor M that prec holds: of an earlier
+ * matrix of that pattern (a Newton tangent a few iterations older), or of
+ * A's symmetric part (a contact tangent that is not quite symmetric): the
+ * preconditioned operator is near the identity.  The rows whose diagonal
+ * is a tgv (>= 1e20: Dirichlet rows) are scaled by it (S = their
+ * inverse), so that they weigh as the displacement they impose: the
+ * system solved is (S A P^-1) y = S b, x = P^-1 y, P^-1 v = M^-1 S^-1 v.
+ * Converged at a true scaled residual |S (b - A x)| <= 1e-13 |S b| (the
+ * direct solve's own level: looser costs Newton iterations on
+ * penalty-stiff systems), in at most m iterations, one cycle.
+ * Returns the iterations, or -1 (x unspecified: the caller factorizes). */
+static long gmres_reuse(ffc_full *f, const pattern_engine *p, ffc__engine *prec, long m, const double b[], double x[])
+{
+    const long n = p->n, m1 = m + 1;
+    const long need = n * (m1 + 3) + m1 * m + 3 * m1;
+    if (need > f->wcap) {
+        double *w = realloc(f->work, (size_t)need * sizeof *w);
+        if (!w) return -1;
+        f->work = w;
+        f->wcap = need;
+    }
+    double *V = f->work, *sc = V + n * m1, *w = sc + n, *z = w + n, *H = z + n, *cs = H + m1 * m, *sn = cs + m1,
+           *g = sn + m1;
+    for (long i = 0; i < n; i++) {
+        const long e = find_entry(p, (int)i, (int)i);
+        const double d = e >= 0 ? fabs(p->pv[e]) : 0.0;
+        sc[i] = d >= 1e20 ? 1.0 / d : 1.0;
+    }
+    for (long i = 0; i < n; i++) V[i] = sc[i] * b[i];
+    const double bn = norm2(n, V);
+    if (!(bn > 0.0)) { memset(x, 0, (size_t)n * sizeof *x); return 0; }
+    for (long i = 0; i < n; i++) V[i] /= bn;
+    for (long i = 0; i < m1; i++) g[i] = 0.0;
+    g[0] = bn;
+    long j = 0;
+    for (; j < m; j++) {
+        /* V[:, j + 1] = S A M^-1 S^-1 V[:, j] */
+        for (long i = 0; i < n; i++) w[i] = V[j * n + i] / sc[i];
+        if (prec->op->solve(prec, w, z)) return -1;
+        double *v1 = V + (j + 1) * n;
+        pattern_mult(p, z, v1);
+        for (long i = 0; i < n; i++) v1[i] *= sc[i];
+        double *h = H + j * m1;
+        for (long i = 0; i <= j; i++) { /* modified Gram-Schmidt */
+            double d = 0.0;
+            for (long r = 0; r < n; r++) d += v1[r] * V[i * n + r];
+            h[i] = d;
+            for (long r = 0; r < n; r++) v1[r] -= d * V[i * n + r];
+        }
+        h[j + 1] = norm2(n, v1);
+        if (h[j + 1] > 0.0)
+            for (long r = 0; r < n; r++) v1[r] /= h[j + 1];
+        for (long i = 0; i < j; i++) { /* earlier rotations */
+            const double hi = cs[i] * h[i] + sn[i] * h[i + 1];
+            h[i + 1] = -sn[i] * h[i] + cs[i] * h[i + 1];
+            h[i] = hi;
+        }
+        const double rr = hypot(h[j], h[j + 1]);
+        if (!(rr > 0.0)) return -1;
+        cs[j] = h[j] / rr;
+        sn[j] = h[j + 1] / rr;
+        h[j] = rr;
+        h[j + 1] = 0.0;
+        g[j + 1] = -sn[j] * g[j];
+        g[j] *= cs[j];
+        if (fabs(g[j + 1]) <= 1e-13 * bn) { j++; break; }
+    }
+    if (!(fabs(g[j]) <= 1e-13 * bn) && j == m) return -1;
+    /* y = H^-1 g (upper triangular, j x j), x = M^-1 S^-1 V y */
+    for (long i = j - 1; i >= 0; i--) {
+        double t = g[i];
+        for (long k = i + 1; k < j; k++) t -= H[k * m1 + i] * g[k];
+        g[i] = t / H[i * m1 + i];
+    }
+    memset(w, 0, (size_t)n * sizeof *w);
+    for (long k = 0; k < j; k++)
+        for (long i = 0; i < n; i++) w[i] += g[k] * V[k * n + i];
+    for (long i = 0; i < n; i++) w[i] /= sc[i];
+    if (prec->op->solve(prec, w, x)) return -1;
+    /* the true scaled residual */
+    pattern_mult(p, x, z);
+    for (long i = 0; i < n; i++) z[i] = sc[i] * (b[i] - z[i]);
+    return norm2(n, z) <= 1e-13 * bn ? j : -1;
+}
+
+/* A on p's engine: on the analysed pattern when it holds A's entries,
+ * else on the union of both, analysed; factorized, solved */
+static int engine_solve(ffc_full *f, pattern_engine *p, const ffc__tri *A, const double b[], double x[])
+{
+    int st = FFC_OK;
+    const int same = scatter(p, A);
+    if (same && f->reuse > 0 && p->eng->factored) {
+        const long it = gmres_reuse(f, p, p->eng, f->reuse, b, x);
+        if (it >= 0) {
+            f->reused++;
+            f->krylov += it;
+            return FFC_OK;
+        }
+    }
+    if (!same) {
+        st = grow_pattern(p, A);
+        const ffc__tri P = {p->n, p->nz, p->pi, p->pj, p->pv, A->sym};
+        if (!st) st = p->eng->op->analyze(p->eng, &P);
+        if (st) pattern_free(p);
+        else f->analyses++;
+    }
+    const ffc__tri P = {p->n, p->nz, p->pi, p->pj, p->pv, A->sym};
+    if (!st) st = p->eng->op->factorize(p->eng, &P);
+    if (!st) {
+        f->info.factorizations++;
+        st = p->eng->op->solve(p->eng, b, x);
+        f->info.backsolves += st == FFC_OK;
+    }
+    return st;
+}
+
+/* A general matrix on lu's pattern: GMRES on the last factor (f->reuse
+ * iterations at most), else UMFPACK's LU of A, the next call's
+ * preconditioner.  (Tried and dropped: CHOLMOD's LL^T of the symmetric
+ * part (A + A^T) / 2 as the preconditioner. The soft ball's contact
+ * tangents are too far from symmetric: 10 GMRES iterations a solve, 89 s
+ * against 82 s at 19,014 dofs.) */
+static int general_solve(ffc_full *f, const ffc__tri *A, const double b[], double x[])
+{
+    pattern_engine *p = &f->lu;
+    int st = FFC_OK;
+    const int same = scatter(p, A);
+    if (!same) {
+        if ((st = grow_pattern(p, A))) { pattern_free(p); f->prec = NULL; return st; }
+        f->lu_ready = 0;   /* (analysed when next factorized; the last factor stays a preconditioner) */
+    }
+    if (f->reuse > 0 && f->prec && f->prec->factored && f->prec->n == p->n) {
+        const long it = gmres_reuse(f, p, f->prec, f->reuse, b, x);
+        if (it >= 0) {
+            f->reused++;
+            f->krylov += it;
+            return FFC_OK;
+        }
+    }
+    const ffc__tri P = {p->n, p->nz, p->pi, p->pj, p->pv, 0};
+    if (!f->lu_ready) {
+        if ((st = p->eng->op->analyze(p->eng, &P))) return st;
+        f->analyses++;
+        f->lu_ready = 1;
+    }
+    if ((st = p->eng->op->factorize(p->eng, &P))) return st;
+    f->info.factorizations++;
+    f->prec = p->eng;
+    st = p->eng->op->solve(p->eng, b, x);
+    f->info.backsolves += st == FFC_OK;
+    return st;
+}
+
+int ffc_full_solve(ffc_full *f, long n, long nt, const long Ti[], const long Tj[], const double Tv[], int sym,
                    const double b[], double x[], ffc_error *err)
 {
     long bad = -1;
@@ -135,27 +394,58 @@ int ffc_full_solve(ffc_full *f, long n, long nt, const long Ti[], const long Tj[
     int *ti, *tj;
     double *tv;
     if ((st = int_triplets(n, nt, Ti, Tj, Tv, &ti, &tj, &tv))) return st;
+    if (sym) {
+        /* the lower triangle, in place after the whole (kept for UMFPACK):
+         * CHOLMOD's LL^T; not positive definite: UMFPACK below */
+        int *li = malloc((size_t)(nt > 0 ? nt : 1) * sizeof *li), *lj = malloc((size_t)(nt > 0 ? nt : 1) * sizeof *lj);
+        double *lv = malloc((size_t)(nt > 0 ? nt : 1) * sizeof *lv);
+        if (!li || !lj || !lv) st = FFC_ERR_MEMORY;
+        long nl = 0;
+        for (long k = 0; k < nt && !st; k++)
+            if (ti[k] >= tj[k]) { li[nl] = ti[k]; lj[nl] = tj[k]; lv[nl++] = tv[k]; }
+        if (!st) {
+            const ffc__tri L = {n, nl, li, lj, lv, 1};
+            st = engine_solve(f, &f->chol, &L, b, x);
+            if (!st) f->cholesky++;
+            else if (st == FFC_ERR_SINGULAR) { f->not_posdef++; st = 1; }   /* (to UMFPACK) */
+        }
+        free(li); free(lj); free(lv);
+        if (st && st != 1) {
+            if (err) *err = f->chol.eng->err;
+            free(ti); free(tj); free(tv);
+            return st;
+        }
+        if (!st) { free(ti); free(tj); free(tv); return FFC_OK; }
+    }
     const ffc__tri A = {n, nt, ti, tj, tv, 0};
-    if (!same_pattern(f, n, nt, Ti, Tj)) {
-        st = f->eng->op->analyze(f->eng, &A);
-        if (!st) st = keep_pattern(f, n, nt, Ti, Tj);
-        if (st) { free(f->pi); free(f->pj); f->pi = f->pj = NULL; }
-    }
-    if (!st) st = f->eng->op->factorize(f->eng, &A);
-    if (!st) {
-        f->info.factorizations++;
-        st = f->eng->op->solve(f->eng, b, x);
-        f->info.backsolves += st == FFC_OK;
-    }
+    st = general_solve(f, &A, b, x);
     free(ti); free(tj); free(tv);
-    if (st && err) *err = f->eng->err;
+    if (st && err) *err = f->lu.eng->err;
     return st;
 }
 
-int ffc_full_info(const ffc_full *f, ffc_solve_info *info, long *analyses)
+int ffc_full_set_reuse(ffc_full *f, long maxit)
+{
+    if (!f) return FFC_ERR_NULL;
+    if (maxit < 0 || maxit > 1000) return FFC_ERR_VALUE;
+    f->reuse = maxit;
+    return FFC_OK;
+}
+
+int ffc_full_reuse_info(const ffc_full *f, long *reused, long *krylov)
+{
+    if (!f) return FFC_ERR_NULL;
+    if (reused) *reused = f->reused;
+    if (krylov) *krylov = f->krylov;
+    return FFC_OK;
+}
+
+int ffc_full_info(const ffc_full *f, ffc_solve_info *info, long *analyses, long *cholesky, long *not_posdef)
 {
     if (!f || !info) return FFC_ERR_NULL;
     *info = f->info;
     if (analyses) *analyses = f->analyses;
+    if (cholesky) *cholesky = f->cholesky;
+    if (not_posdef) *not_posdef = f->not_posdef;
     return FFC_OK;
 }

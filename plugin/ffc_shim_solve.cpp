@@ -379,7 +379,20 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "reused") return in.reused;
     if (k == "factorRanks") return in.factor_ranks;
     if (k == "factorSplit") return in.factor_split;
-    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, shiftedDofs, rcond, residual, newtonIterations, evaluations, evaluationsShared, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, backsolveTime, reused, factorRanks, factorSplit");
+    if (k.compare(0, 4, "full") == 0) {   // ffcFullSolve's
+        ffc_solve_info fi = {};
+        long an = 0, ch = 0, npd = 0;
+        if (d.full) ffc_full_info(d.full, &fi, &an, &ch, &npd);
+        if (k == "fullFactorizations") return fi.factorizations;
+        if (k == "fullCholesky") return ch;
+        if (k == "fullNotPosdef") return npd;
+        if (k == "fullAnalyses") return an;
+        long ru = 0, kr = 0;
+        if (d.full) ffc_full_reuse_info(d.full, &ru, &kr);
+        if (k == "fullReused") return ru;
+        if (k == "fullKrylov") return kr;
+    }
+    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, shiftedDofs, rcond, residual, newtonIterations, evaluations, evaluationsShared, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, backsolveTime, reused, factorRanks, factorSplit, fullFactorizations, fullCholesky, fullNotPosdef, fullAnalyses, fullReused, fullKrylov");
     return 0;
 }
 
@@ -425,12 +438,17 @@ long parallelSolveOwn(Matrice_Creuse<double> *const &A, KN<double> *const &b, KN
     return 0;
 }
 
-// ffcFullSolve(C, A, b, x): x = A^-1 b for a general sparse A of the
-// scene's size or any other (a full Newton system, a saddle matrix, the
-// mass matrix) by UMFPACK in C, the pattern's analysis kept for the next
-// call with the same pattern; 0 solved, 1 singular (an exactly zero pivot;
-// the caller checks the residual, as a tiny pivot gives a huge x)
-long sceneFullSolve(const Named &, FFScene *const &C, Matrice_Creuse<double> *const &A, KN<double> *const &b,
+// ffcFullSolve(C, A, b, x, symmetric = 0, reuse = the scene's reuseKrylov):
+// x = A^-1 b for a general sparse A of the scene's size or any other (a
+// full Newton system, a saddle matrix, the mass matrix) by UMFPACK in C,
+// or, with symmetric = 1 (the caller knows A is symmetric), by CHOLMOD's
+// LL^T where A is positive definite; each engine's analysis kept while
+// the matrices' entries lie in its pattern, and (reuse > 0) its last
+// factor the preconditioner of GMRES (at most reuse iterations) before a
+// new factorization; 0 solved, 1 singular (an exactly zero pivot; the
+// caller checks the residual, as a tiny pivot gives a huge x)
+basicAC_F0::name_and_type full_names[] = {{"symmetric", &typeid(long)}, {"reuse", &typeid(long)}};
+long sceneFullSolve(const Named &nm, FFScene *const &C, Matrice_Creuse<double> *const &A, KN<double> *const &b,
                     KN<double> *const &x)
 {
     const char *fn = "ffcFullSolve";
@@ -442,11 +460,18 @@ long sceneFullSolve(const Named &, FFScene *const &C, Matrice_Creuse<double> *co
     if (b->N() != n) fail(fn, "argument 'b': size " + std::to_string(b->N()) + ", expected " + std::to_string(n));
     need_finite(fn, "b", b);
     if (!x) fail(fn, "argument 'x': array is not defined");
+    const long sym = nm.integer(0, 0);
+    if (sym != 0 && sym != 1) fail(fn, "argument 'symmetric': " + std::to_string(sym) + " is not 0 or 1");
+    double rdef = 0;
+    ffc_settings_get(ffc_scene_settings(d.s), "reuseKrylov", &rdef);
+    const long reuse = nm.integer(1, (long)rdef);
+    if (reuse < 0 || reuse > 1000) fail(fn, "argument 'reuse': " + std::to_string(reuse) + " is not in [0, 1000]");
     if (!d.full && ffc_full_create(&d.full)) fail(fn, "out of memory for the full solver");
+    ffc_full_set_reuse(d.full, reuse);
     std::vector<double> bv(n), xv(n);
     for (long i = 0; i < n; i++) bv[i] = (*b)[i];
     ffc_error err = {};
-    const int st = ffc_full_solve(d.full, n, (long)Ti.size(), Ti.data(), Tj.data(), Tv.data(), bv.data(), xv.data(), &err);
+    const int st = ffc_full_solve(d.full, n, (long)Ti.size(), Ti.data(), Tj.data(), Tv.data(), (int)sym, bv.data(), xv.data(), &err);
     if (st == FFC_ERR_SINGULAR) return 1;
     if (st) fail(fn, std::string("argument 'A': ") + err.msg);
     x->resize(n);

@@ -191,8 +191,8 @@ static void test_out_of_memory(void **state)
     free(tv);
 }
 
-/* the full solver: two solves on one pattern, one analysis; a new
- * pattern, a second; bad input named */
+/* the full solver: two solves on one pattern, one analysis; a subset of
+ * it, none; a new coupling, a second; bad input named */
 static void test_full_reuse(void **state)
 {
     (void)state;
@@ -213,22 +213,81 @@ static void test_full_reuse(void **state)
     ffc_error err;
     for (int pass = 0; pass < 2; pass++) {
         if (pass) { Tv[0] *= 2; D[0] *= 2; }
-        assert_int_equal(ffc_full_solve(f, N, nt, Ti, Tj, Tv, b, x, &err), FFC_OK);
+        assert_int_equal(ffc_full_solve(f, N, nt, Ti, Tj, Tv, 0, b, x, &err), FFC_OK);
         test_dense_solve(N, D, b, xd);
         for (int i = 0; i < N; i++) assert_close(x[i], xd[i], 1e-13);
     }
     ffc_solve_info in;
     long analyses = 0;
-    assert_int_equal(ffc_full_info(f, &in, &analyses), FFC_OK);
+    assert_int_equal(ffc_full_info(f, &in, &analyses, NULL, NULL), FFC_OK);
     assert_int_equal(analyses, 1);
     assert_int_equal(in.factorizations, 2);
-    assert_int_equal(ffc_full_solve(f, N, nt - 1, Ti, Tj, Tv, b, x, &err), FFC_OK);   /* (another pattern) */
-    assert_int_equal(ffc_full_info(f, &in, &analyses), FFC_OK);
+    /* a matrix of fewer entries lies in the analysed pattern: no analysis */
+    assert_int_equal(ffc_full_solve(f, N, nt - 1, Ti, Tj, Tv, 0, b, x, &err), FFC_OK);
+    assert_int_equal(ffc_full_info(f, &in, &analyses, NULL, NULL), FFC_OK);
+    assert_int_equal(analyses, 1);
+    /* one that couples two dofs the pattern does not: the union analysed */
+    Ti[nt] = 0; Tj[nt] = N - 1; Tv[nt] = 0.25;
+    Ti[nt + 1] = N - 1; Tj[nt + 1] = 0; Tv[nt + 1] = 0.25;
+    D[(N - 1) * N] = D[N - 1] = 0.25;
+    assert_int_equal(ffc_full_solve(f, N, nt + 2, Ti, Tj, Tv, 0, b, x, &err), FFC_OK);
+    test_dense_solve(N, D, b, xd);
+    for (int i = 0; i < N; i++) assert_close(x[i], xd[i], 1e-13);
+    assert_int_equal(ffc_full_info(f, &in, &analyses, NULL, NULL), FFC_OK);
     assert_int_equal(analyses, 2);
     Tv[3] = NAN;
-    assert_int_equal(ffc_full_solve(f, N, nt, Ti, Tj, Tv, b, x, &err), FFC_ERR_NONFINITE);
+    assert_int_equal(ffc_full_solve(f, N, nt, Ti, Tj, Tv, 0, b, x, &err), FFC_ERR_NONFINITE);
     assert_int_equal(err.where, FFC_AT_TRIPLET);
     assert_int_equal(err.index, 3);
+    ffc_full_free(f);
+}
+
+/* the full solver on symmetric matrices: a positive definite one by
+ * CHOLMOD (analysed once for two values of one pattern), a symmetric
+ * indefinite one (its first diagonal entry made negative) by UMFPACK,
+ * both against a dense elimination; a diagonal of tgv = 1e30 (FreeFEM's
+ * Dirichlet rows) is no failure */
+static void test_full_symmetric(void **state)
+{
+    (void)state;
+    static int ti[3 * N], tj[3 * N];
+    static double tv[3 * N], D[N * N];
+    const long nz = spd(ti, tj, tv, D);
+    static long Ti[6 * N], Tj[6 * N];
+    static double Tv[6 * N];
+    long nt = 0, k0 = -1;
+    for (long k = 0; k < nz; k++) {
+        if (ti[k] == 0 && tj[k] == 0) k0 = nt;
+        Ti[nt] = ti[k]; Tj[nt] = tj[k]; Tv[nt++] = tv[k];
+        if (ti[k] != tj[k]) { Ti[nt] = tj[k]; Tj[nt] = ti[k]; Tv[nt++] = tv[k]; }
+    }
+    assert_true(k0 >= 0);
+    ffc_full *f = NULL;
+    assert_int_equal(ffc_full_create(&f), FFC_OK);
+    double b[N], x[N], xd[N];
+    for (int i = 0; i < N; i++) b[i] = 1.0 + i;
+    ffc_error err;
+    ffc_solve_info in;
+    long analyses = 0, chol = 0, npd = 0;
+    for (int pass = 0; pass < 3; pass++) {
+        if (pass == 1) { Tv[k0] *= 2; D[0] *= 2; }
+        if (pass == 2) { Tv[k0] = 1e30; D[0] = 1e30; }
+        assert_int_equal(ffc_full_solve(f, N, nt, Ti, Tj, Tv, 1, b, x, &err), FFC_OK);
+        test_dense_solve(N, D, b, xd);
+        for (int i = 0; i < N; i++) assert_close(x[i], xd[i], 1e-12 * (1 + fabs(xd[i])));
+    }
+    assert_int_equal(ffc_full_info(f, &in, &analyses, &chol, &npd), FFC_OK);
+    assert_int_equal(chol, 3);
+    assert_int_equal(npd, 0);
+    assert_int_equal(analyses, 1);
+    Tv[k0] = -D[N + 1]; D[0] = -D[N + 1];   /* indefinite */
+    assert_int_equal(ffc_full_solve(f, N, nt, Ti, Tj, Tv, 1, b, x, &err), FFC_OK);
+    test_dense_solve(N, D, b, xd);
+    for (int i = 0; i < N; i++) assert_close(x[i], xd[i], 1e-10 * (1 + fabs(xd[i])));
+    /* (CHOLMOD's simplicial LDL^T, its choice on a matrix this small, may
+     * factorize it; its supernodal LL^T, on larger ones, does not) */
+    assert_int_equal(ffc_full_info(f, &in, &analyses, &chol, &npd), FFC_OK);
+    assert_int_equal(chol + npd, 4);
     ffc_full_free(f);
 }
 
@@ -285,7 +344,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_same_solutions), cmocka_unit_test(test_unsymmetric), cmocka_unit_test(test_reasons),
-        cmocka_unit_test(test_out_of_memory), cmocka_unit_test(test_full_reuse), cmocka_unit_test(test_line_search),
+        cmocka_unit_test(test_out_of_memory), cmocka_unit_test(test_full_reuse), cmocka_unit_test(test_full_symmetric),cmocka_unit_test(test_line_search),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
