@@ -121,7 +121,7 @@ $(B)/meshes/%.msh: meshes/%.geo
 $(B)/bench_search: tests/bench/bench_search.c $(B)/libffc.a
 	$(CC) $(CFLAGS) $< $(B)/libffc.a $(CLIBS) -o $@
 
-.PHONY: bench bench-search bench-contact bench-mpi bench-scene
+.PHONY: bench bench-search bench-contact bench-mpi bench-scene bench-finite
 bench-search: $(B)/bench_search
 	@sh tests/bench/bench_search.sh
 bench-contact: all
@@ -134,7 +134,10 @@ $(B)/bench_pair: tests/bench/bench_pair.c
 # README's own scene and variants (MODE=quick: without the finer mesh)
 bench-scene: all
 	@sh tests/bench/bench_scene.sh $(MODE)
-bench: bench-search bench-contact bench-mpi bench-scene
+# finite deformation: the soft ball's three levels (MODE=full: and the ironing)
+bench-finite: all
+	@sh tests/bench/bench_finite.sh $(MODE)
+bench: bench-search bench-contact bench-mpi bench-scene bench-finite
 
 # sanitizers and fuzzing (clang from Debian)
 ASAN := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
