@@ -24,9 +24,6 @@ static const ffc_setting table[] = {
     {"rtol", FFC_SET_REAL, 1e-9, 0, 1, 3, NULL, "Newton: |r| <= rtol x the force scale, on the free dofs"},
     {"pentol", FFC_SET_REAL, 1e-4, 0, INF, 1, NULL, "augmentations: largest weighted nodal penetration <= pentol x h"},
     {"ltol", FFC_SET_REAL, 1e-4, 0, INF, 1, NULL, "augmentations: largest multiplier change <= ltol x largest pressure"},
-    {"inexact", FFC_SET_REAL, 0.1, 0, 1, 0, NULL,
-     "the full-system path: an augmentation that is not the last solves Newton to inexact x the relative multiplier "
-     "change of the one before (0: every one to rtol)"},
     {"epsNGrowMax", FFC_SET_REAL, 10, 1, INF, 0, NULL,
      "a pair's epsN is raised x10 while its multipliers creep, up to this many times its first penalty (1: never)"},
     {"epsTGrowMax", FFC_SET_REAL, 100, 1, INF, 0, NULL,

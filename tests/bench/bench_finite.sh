@@ -15,8 +15,10 @@ echo "case,h_c,dofs,F,newton,newton_per_step,uzawa,steps,factorizations,krylov,t
 sh scripts/ff scripts/soft-ball.edp -levels 3 -hc 0.1 -out results/bench-soft-ball > results/bench-soft-ball.log 2>&1 \
     || { echo "bench-finite: the soft ball failed (results/bench-soft-ball.log)"; exit 1; }
 # one line per level of results/bench-soft-ball.json
-sed -n 's/.*{"h_c": \([^,]*\), "dofs": \([^,]*\), "F": \([^,]*\),.*"newton_iterations": \([^,]*\), "uzawa_iterations": \([^,]*\), "steps": \([^,]*\), "newton_per_step": \([^,]*\), "factorizations": \([^,]*\), "krylov_iterations": \([^,]*\), "time": \([^,]*\), "time_total": \([^}]*\)}.*/soft-ball,\1,\2,\3,\4,\7,\5,\6,\8,\9,\10,\11/p' \
-    results/bench-soft-ball.json | tee -a "$out"
+awk -F', ' '/"h_c"/ {
+    for (i = 1; i <= NF; i++) { split($i, kv, ": "); k = kv[1]; x = kv[2]; gsub(/[{}" ]/, "", k); gsub(/[{}, ]/, "", x); v[k] = x }
+    print "soft-ball," v["h_c"] "," v["dofs"] "," v["F"] "," v["newton_iterations"] "," v["newton_per_step"] "," v["uzawa_iterations"] "," v["steps"] "," v["factorizations"] "," v["krylov_iterations"] "," v["time"] "," v["time_total"]
+}' results/bench-soft-ball.json | tee -a "$out"
 if [ "$1" = full ]; then
     sh scripts/ff scripts/ironing.edp -out results/bench-ironing > results/bench-ironing.log 2>&1 \
         || { echo "bench-finite: the ironing failed (results/bench-ironing.log)"; exit 1; }
