@@ -103,19 +103,7 @@ static int gmres_kept(ffc__bulk *b, long a, const double M[], const double Gaa[]
             h[j + 1] = sqrt(ffc__dotn(a, vj1, vj1));
             if (h[j + 1] > 0.0)
                 for (long r = 0; r < a; r++) vj1[r] /= h[j + 1];
-            for (long i = 0; i < j; i++) { /* earlier rotations */
-                const double hi = cs[i] * h[i] + sn[i] * h[i + 1];
-                h[i + 1] = -sn[i] * h[i] + cs[i] * h[i + 1];
-                h[i] = hi;
-            }
-            const double rr = hypot(h[j], h[j + 1]);
-            if (!(rr > 0.0)) return -1;
-            cs[j] = h[j] / rr;
-            sn[j] = h[j + 1] / rr;
-            h[j] = rr;
-            h[j + 1] = 0.0;
-            g[j + 1] = -sn[j] * g[j];
-            g[j] *= cs[j];
+            if (ffc__gmres_rotate(j, h, cs, sn, g)) return -1;
             if (fabs(g[j + 1]) <= 1e-15 * bn) { j++; break; }
         }
         /* y = H^-1 g (upper triangular j x j), x += P^-1 V y */

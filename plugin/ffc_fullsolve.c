@@ -275,19 +275,7 @@ static long gmres_reuse(ffc_full *f, const pattern_engine *p, ffc__engine *prec,
         h[j + 1] = norm2(n, v1);
         if (h[j + 1] > 0.0)
             for (long r = 0; r < n; r++) v1[r] /= h[j + 1];
-        for (long i = 0; i < j; i++) { /* earlier rotations */
-            const double hi = cs[i] * h[i] + sn[i] * h[i + 1];
-            h[i + 1] = -sn[i] * h[i] + cs[i] * h[i + 1];
-            h[i] = hi;
-        }
-        const double rr = hypot(h[j], h[j + 1]);
-        if (!(rr > 0.0)) return -1;
-        cs[j] = h[j] / rr;
-        sn[j] = h[j + 1] / rr;
-        h[j] = rr;
-        h[j + 1] = 0.0;
-        g[j + 1] = -sn[j] * g[j];
-        g[j] *= cs[j];
+        if (ffc__gmres_rotate(j, h, cs, sn, g)) return -1;
         if (fabs(g[j + 1]) <= 1e-13 * bn) { j++; break; }
     }
     if (!(fabs(g[j]) <= 1e-13 * bn) && j == m) return -1;

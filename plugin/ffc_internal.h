@@ -59,6 +59,28 @@ int ffc__lu_solve(long m, double A[], long piv[], double b[]);
  * outside [0, n) or a non-finite value among (Ti, Tj, Tv)[nt], else FFC_OK */
 int ffc__check_triplets(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long *bad);
 
+/* GMRES's Hessenberg column h[j + 2] (modified Gram-Schmidt's) turned
+ * upper triangular: the earlier rotations (cs, sn)[j] applied, the new
+ * one made and applied to it and to the residual vector g (g[j + 1] is
+ * then the residual's norm, with its sign); -1 for a zero column */
+static inline int ffc__gmres_rotate(long j, double h[], double cs[], double sn[], double g[])
+{
+    for (long i = 0; i < j; i++) {
+        const double hi = cs[i] * h[i] + sn[i] * h[i + 1];
+        h[i + 1] = -sn[i] * h[i] + cs[i] * h[i + 1];
+        h[i] = hi;
+    }
+    const double rr = hypot(h[j], h[j + 1]);
+    if (!(rr > 0.0)) return -1;
+    cs[j] = h[j] / rr;
+    sn[j] = h[j + 1] / rr;
+    h[j] = rr;
+    h[j + 1] = 0.0;
+    g[j + 1] = -sn[j] * g[j];
+    g[j] *= cs[j];
+    return 0;
+}
+
 /* Straight-sided tetrahedra (ffc_tet.c).  FreeFEM's edge order of a P2
  * tetrahedron's nodes 4..9: 01 02 03 12 13 23. */
 extern const int ffc__tet_edge[6][2];

@@ -191,21 +191,31 @@ static void test_out_of_memory(void **state)
     free(tv);
 }
 
+/* spd's matrix with both triangles, as the full solver takes it (long
+ * triplets); *k0 (unless NULL): the position of the entry (0, 0) */
+static long spd_whole(long Ti[6 * N], long Tj[6 * N], double Tv[6 * N], double D[N * N], long *k0)
+{
+    static int ti[3 * N], tj[3 * N];
+    static double tv[3 * N];
+    const long nz = spd(ti, tj, tv, D);
+    long nt = 0;
+    for (long k = 0; k < nz; k++) {
+        if (k0 && ti[k] == 0 && tj[k] == 0) *k0 = nt;
+        Ti[nt] = ti[k]; Tj[nt] = tj[k]; Tv[nt++] = tv[k];
+        if (ti[k] != tj[k]) { Ti[nt] = tj[k]; Tj[nt] = ti[k]; Tv[nt++] = tv[k]; }
+    }
+    return nt;
+}
+
 /* the full solver: two solves on one pattern, one analysis; a subset of
  * it, none; a new coupling, a second; bad input named */
 static void test_full_reuse(void **state)
 {
     (void)state;
-    static int ti[3 * N], tj[3 * N];
-    static double tv[3 * N], D[N * N];
-    const long nz = spd(ti, tj, tv, D);
+    static double D[N * N];
     static long Ti[6 * N], Tj[6 * N];
     static double Tv[6 * N];
-    long nt = 0;
-    for (long k = 0; k < nz; k++) {
-        Ti[nt] = ti[k]; Tj[nt] = tj[k]; Tv[nt++] = tv[k];
-        if (ti[k] != tj[k]) { Ti[nt] = tj[k]; Tj[nt] = ti[k]; Tv[nt++] = tv[k]; }
-    }
+    long nt = spd_whole(Ti, Tj, Tv, D, NULL);
     ffc_full *f = NULL;
     assert_int_equal(ffc_full_create(&f), FFC_OK);
     double b[N], x[N], xd[N];
@@ -250,17 +260,11 @@ static void test_full_reuse(void **state)
 static void test_full_symmetric(void **state)
 {
     (void)state;
-    static int ti[3 * N], tj[3 * N];
-    static double tv[3 * N], D[N * N];
-    const long nz = spd(ti, tj, tv, D);
+    static double D[N * N];
     static long Ti[6 * N], Tj[6 * N];
     static double Tv[6 * N];
-    long nt = 0, k0 = -1;
-    for (long k = 0; k < nz; k++) {
-        if (ti[k] == 0 && tj[k] == 0) k0 = nt;
-        Ti[nt] = ti[k]; Tj[nt] = tj[k]; Tv[nt++] = tv[k];
-        if (ti[k] != tj[k]) { Ti[nt] = tj[k]; Tj[nt] = ti[k]; Tv[nt++] = tv[k]; }
-    }
+    long k0 = -1;
+    const long nt = spd_whole(Ti, Tj, Tv, D, &k0);
     assert_true(k0 >= 0);
     ffc_full *f = NULL;
     assert_int_equal(ffc_full_create(&f), FFC_OK);
