@@ -75,7 +75,12 @@ const double *need_scene_u(const char *fn, SceneData &d, KN<double> *u, const ch
     if (u->N() != 3 * d.nn) {
         std::ostringstream s;
         s << a << "size " << u->N() << ", expected " << 3 * d.nn << " = 3 x " << d.nn
-          << (d.order == 2 ? " P2 nodes" : " vertices") << " of the scene's mesh (is it the mesh the scene was made with?)";
+          << (d.order == 2 ? " P2 nodes" : " vertices") << " of the scene's mesh";
+        if (d.order == 2 && u->N() == 3 * d.m.nv)
+            s << " (it has the size of a [P1,P1,P1] field: a scene made with order = 2 needs fespace Vh(Th, [P2,P2,P2]))";
+        else if (d.order == 1 && d.m.nt > 0 && u->N() > 3 * d.m.nv)
+            s << " (a [P2,P2,P2] field needs the scene made with order = 2)";
+        else s << " (is it the mesh the scene was made with?)";
         fail(fn, s.str());
     }
     need_finite(fn, arg, u);
