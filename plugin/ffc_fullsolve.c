@@ -70,6 +70,8 @@ int ffc_parallel_solve(const ffc_parallel *p, long n, long nt, const long Ti[], 
  * whose contact couples no new dofs. */
 typedef struct {
     ffc__engine *eng;
+    int sym;                   /* 1: the pattern is a symmetric matrix's lower triangle */
+    int ready;                 /* 1: eng analysed the present pattern */
     long n, nz;                /* the order and the entries of the analysed pattern (0: none) */
     long *cp;                  /* [n + 1] column starts in pi */
     int *pi, *pj;              /* [nz] each entry's row and column */
@@ -80,8 +82,6 @@ typedef struct {
  * (their lower triangle), each with the pattern it analysed. */
 struct ffc_full {
     pattern_engine lu, chol;   /* a general matrix (its LU), a symmetric one (its LL^T) */
-    int lu_ready;              /* 1: lu's engine analysed lu's present pattern */
-    ffc__engine *prec;         /* the engine holding the last factor of a general matrix (NULL: none) */
     ffc__ranks one;            /* CHOLMOD's ranks: this process */
     long one_count;            /* (its count array) */
     ffc_solve_info info;       /* the counters of both */
@@ -105,6 +105,7 @@ int ffc_full_create(ffc_full **out)
     if (!st) st = ffc__cholmod_create(&f->info, &f->one, &f->chol.eng);
     if (st) { ffc_full_free(f); return st; }
     ffc__cholmod_set_rcond(f->chol.eng, 0.0);   /* (tgv rows: the caller checks the residual) */
+    f->chol.sym = 1;
     *out = f;
     return FFC_OK;
 }
@@ -116,6 +117,7 @@ static void pattern_free(pattern_engine *p)
     p->pi = p->pj = NULL;
     p->pv = NULL;
     p->n = p->nz = 0;
+    p->ready = 0;
 }
 
 void ffc_full_free(ffc_full *f)
@@ -204,14 +206,18 @@ static int grow_pattern(pattern_engine *p, const ffc__tri *A)
     return FFC_OK;
 }
 
-/* y[n] = A x on p's pattern and values (by columns) */
+/* y[n] = A x on p's pattern and values (by columns; a lower triangle
+ * stands for its symmetric matrix) */
 static void pattern_mult(const pattern_engine *p, const double x[], double y[])
 {
     memset(y, 0, (size_t)p->n * sizeof *y);
     for (long j = 0; j < p->n; j++) {
         const double xj = x[j];
-        if (xj == 0.0) continue;
-        for (long e = p->cp[j]; e < p->cp[j + 1]; e++) y[p->pi[e]] += p->pv[e] * xj;
+        for (long e = p->cp[j]; e < p->cp[j + 1]; e++) {
+            const long i = p->pi[e];
+            y[i] += p->pv[e] * xj;
+            if (p->sym && i != j) y[j] += p->pv[e] * x[i];
+        }
     }
 }
 
@@ -223,20 +229,20 @@ static double norm2(long n, const double x[])
 }
 
 /* Formulation: A x = b for A on p's pattern (its values p->pv) by GMRES,
- * right-preconditioned with the factor M that prec holds: of an earlier
- * matrix of that pattern (a Newton tangent a few iterations older), or of
- * A's symmetric part (a contact tangent that is not quite symmetric): the
+ * right-preconditioned with the factor M that p's engine holds of an
+ * earlier matrix (a Newton tangent a few iterations older): the
  * preconditioned operator is near the identity.  The rows whose diagonal
  * is a tgv (>= 1e20: Dirichlet rows) are scaled by it (S = their
  * inverse), so that they weigh as the displacement they impose: the
  * system solved is (S A P^-1) y = S b, x = P^-1 y, P^-1 v = M^-1 S^-1 v.
  * Converged at a true scaled residual |S (b - A x)| <= 1e-13 |S b| (the
  * direct solve's own level: looser costs Newton iterations on
- * penalty-stiff systems), in at most m iterations, one cycle.
+ * penalty-stiff systems), in at most f->reuse iterations, one cycle.
  * Returns the iterations, or -1 (x unspecified: the caller factorizes). */
-static long gmres_reuse(ffc_full *f, const pattern_engine *p, ffc__engine *prec, long m, const double b[], double x[])
+static long gmres_reuse(ffc_full *f, const pattern_engine *p, const double b[], double x[])
 {
-    const long n = p->n, m1 = m + 1;
+    ffc__engine *prec = p->eng;
+    const long n = p->n, m = f->reuse, m1 = m + 1;
     const long need = n * (m1 + 3) + m1 * m + 3 * m1;
     if (need > f->wcap) {
         double *w = realloc(f->work, (size_t)need * sizeof *w);
@@ -296,69 +302,37 @@ static long gmres_reuse(ffc_full *f, const pattern_engine *p, ffc__engine *prec,
     return norm2(n, z) <= 1e-13 * bn ? j : -1;
 }
 
-/* A on p's engine: on the analysed pattern when it holds A's entries,
- * else on the union of both, analysed; factorized, solved */
-static int engine_solve(ffc_full *f, pattern_engine *p, const ffc__tri *A, const double b[], double x[])
+/* A on p's engine: its entries scattered on the analysed pattern (grown
+ * to the union of both when A has others); GMRES on the engine's last
+ * factor (f->reuse iterations at most), else the pattern analysed if it
+ * is new, A factorized (the next call's preconditioner) and solved.
+ * (Tried and dropped for a general A: CHOLMOD's LL^T of its symmetric part
+ * (A + A^T) / 2 as the preconditioner. The soft ball's contact tangents
+ * are too far from symmetric: 10 GMRES iterations a solve, 89 s against
+ * 82 s at 19,014 dofs.) */
+static int pattern_solve(ffc_full *f, pattern_engine *p, const ffc__tri *A, const double b[], double x[])
 {
-    int st = FFC_OK;
-    const int same = scatter(p, A);
-    if (same && f->reuse > 0 && p->eng->factored) {
-        const long it = gmres_reuse(f, p, p->eng, f->reuse, b, x);
+    int st;
+    if (!scatter(p, A)) {
+        if ((st = grow_pattern(p, A))) { pattern_free(p); return st; }
+        p->ready = 0;   /* (analysed when next factorized; the last factor stays a preconditioner) */
+    }
+    if (f->reuse > 0 && p->eng->factored && p->eng->n == p->n) {
+        const long it = gmres_reuse(f, p, b, x);
         if (it >= 0) {
             f->reused++;
             f->krylov += it;
             return FFC_OK;
         }
     }
-    if (!same) {
-        st = grow_pattern(p, A);
-        const ffc__tri P = {p->n, p->nz, p->pi, p->pj, p->pv, A->sym};
-        if (!st) st = p->eng->op->analyze(p->eng, &P);
-        if (st) pattern_free(p);
-        else f->analyses++;
-    }
-    const ffc__tri P = {p->n, p->nz, p->pi, p->pj, p->pv, A->sym};
-    if (!st) st = p->eng->op->factorize(p->eng, &P);
-    if (!st) {
-        f->info.factorizations++;
-        st = p->eng->op->solve(p->eng, b, x);
-        f->info.backsolves += st == FFC_OK;
-    }
-    return st;
-}
-
-/* A general matrix on lu's pattern: GMRES on the last factor (f->reuse
- * iterations at most), else UMFPACK's LU of A, the next call's
- * preconditioner.  (Tried and dropped: CHOLMOD's LL^T of the symmetric
- * part (A + A^T) / 2 as the preconditioner. The soft ball's contact
- * tangents are too far from symmetric: 10 GMRES iterations a solve, 89 s
- * against 82 s at 19,014 dofs.) */
-static int general_solve(ffc_full *f, const ffc__tri *A, const double b[], double x[])
-{
-    pattern_engine *p = &f->lu;
-    int st = FFC_OK;
-    const int same = scatter(p, A);
-    if (!same) {
-        if ((st = grow_pattern(p, A))) { pattern_free(p); f->prec = NULL; return st; }
-        f->lu_ready = 0;   /* (analysed when next factorized; the last factor stays a preconditioner) */
-    }
-    if (f->reuse > 0 && f->prec && f->prec->factored && f->prec->n == p->n) {
-        const long it = gmres_reuse(f, p, f->prec, f->reuse, b, x);
-        if (it >= 0) {
-            f->reused++;
-            f->krylov += it;
-            return FFC_OK;
-        }
-    }
-    const ffc__tri P = {p->n, p->nz, p->pi, p->pj, p->pv, 0};
-    if (!f->lu_ready) {
+    const ffc__tri P = {p->n, p->nz, p->pi, p->pj, p->pv, p->sym};
+    if (!p->ready) {
         if ((st = p->eng->op->analyze(p->eng, &P))) return st;
         f->analyses++;
-        f->lu_ready = 1;
+        p->ready = 1;
     }
     if ((st = p->eng->op->factorize(p->eng, &P))) return st;
     f->info.factorizations++;
-    f->prec = p->eng;
     st = p->eng->op->solve(p->eng, b, x);
     f->info.backsolves += st == FFC_OK;
     return st;
@@ -393,8 +367,9 @@ int ffc_full_solve(ffc_full *f, long n, long nt, const long Ti[], const long Tj[
             if (ti[k] >= tj[k]) { li[nl] = ti[k]; lj[nl] = tj[k]; lv[nl++] = tv[k]; }
         if (!st) {
             const ffc__tri L = {n, nl, li, lj, lv, 1};
-            st = engine_solve(f, &f->chol, &L, b, x);
-            if (!st) f->cholesky++;
+            const long nf = f->info.factorizations;
+            st = pattern_solve(f, &f->chol, &L, b, x);
+            if (!st) f->cholesky += f->info.factorizations - nf;   /* (none for a solve on the last factor) */
             else if (st == FFC_ERR_SINGULAR) { f->not_posdef++; st = 1; }   /* (to UMFPACK) */
         }
         free(li); free(lj); free(lv);
@@ -406,7 +381,7 @@ int ffc_full_solve(ffc_full *f, long n, long nt, const long Ti[], const long Tj[
         if (!st) { free(ti); free(tj); free(tv); return FFC_OK; }
     }
     const ffc__tri A = {n, nt, ti, tj, tv, 0};
-    st = general_solve(f, &A, b, x);
+    st = pattern_solve(f, &f->lu, &A, b, x);
     free(ti); free(tj); free(tv);
     if (st && err) *err = f->lu.eng->err;
     return st;

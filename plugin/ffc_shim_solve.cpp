@@ -149,6 +149,21 @@ void hyper_prepare(const char *fn, SceneData &d, KN<double> *u, KN<double> *l1, 
                       : err.status == FFC_ERR_NONFINITE && err.where == FFC_AT_ELEMENT ? "lame1, lame2" : "C";
     fail(fn, std::string("argument '") + arg + "': " + err.msg);
 }
+
+// the operator at u (its law, the arguments checked, the node graph made
+// at the first call): W and f as ffc_hyper_assemble takes them, the
+// tangent into d.hKv when asked
+void hyper_assemble(const char *fn, SceneData &d, KN<double> *u, KN<double> *l1, KN<double> *l2, double *W, double f[],
+                    bool tangent)
+{
+    const int law = hyper_law(fn, d);
+    hyper_prepare(fn, d, u, l1, l2);
+    const ffc_tets m = hyper_mesh(d);
+    ffc_error err;
+    if (ffc_hyper_assemble(law, &m, &(*l1)[0], &(*l2)[0], &(*u)[0], d.hrp.data(), d.hadj.data(), W, f,
+                           tangent ? d.hKv.data() : nullptr, &err))
+        hyper_fail(fn, err);
+}
 } // namespace
 
 double sceneHyperForce(const Named &, FFScene *const &C, KN<double> *const &u, KN<double> *const &l1, KN<double> *const &l2,
@@ -156,15 +171,10 @@ double sceneHyperForce(const Named &, FFScene *const &C, KN<double> *const &u, K
 {
     const char *fn = "ffcHyperForce";
     SceneData &d = need_scene(fn, C);
-    const int law = hyper_law(fn, d);
     if (!f) fail(fn, "argument 'f': array is not defined");
-    hyper_prepare(fn, d, u, l1, l2);
-    const ffc_tets m = hyper_mesh(d);
     std::vector<double> fv(3 * d.nn);
     double W = 0;
-    ffc_error err;
-    if (ffc_hyper_assemble(law, &m, &(*l1)[0], &(*l2)[0], &(*u)[0], d.hrp.data(), d.hadj.data(), &W, fv.data(), nullptr, &err))
-        hyper_fail(fn, err);
+    hyper_assemble(fn, d, u, l1, l2, &W, fv.data(), false);
     f->resize(3 * d.nn);
     for (long k = 0; k < 3 * d.nn; k++) (*f)[k] = fv[k];
     return W;
@@ -175,14 +185,8 @@ long sceneHyperTangent(const Named &, FFScene *const &C, KN<double> *const &u, K
 {
     const char *fn = "ffcHyperTangent";
     SceneData &d = need_scene(fn, C);
-    const int law = hyper_law(fn, d);
     if (!K) fail(fn, "argument 'K': matrix is not defined");
-    hyper_prepare(fn, d, u, l1, l2);
-    const ffc_tets m = hyper_mesh(d);
-    ffc_error err;
-    if (ffc_hyper_assemble(law, &m, &(*l1)[0], &(*l2)[0], &(*u)[0], d.hrp.data(), d.hadj.data(), nullptr, nullptr,
-                           d.hKv.data(), &err))
-        hyper_fail(fn, err);
+    hyper_assemble(fn, d, u, l1, l2, nullptr, nullptr, true);
     const long nz = (long)d.hKv.size();
     set_matrix(3 * d.nn, nz, d.hKi.data(), d.hKj.data(), d.hKv.data(), false, K);
     return nz;

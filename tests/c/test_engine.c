@@ -284,6 +284,22 @@ static void test_full_symmetric(void **state)
     assert_int_equal(chol, 3);
     assert_int_equal(npd, 0);
     assert_int_equal(analyses, 1);
+    /* factor reuse: a nearby symmetric matrix by GMRES on the last LL^T,
+     * the product by the whole symmetric matrix (its lower triangle
+     * mirrored), against a dense elimination */
+    assert_int_equal(ffc_full_set_reuse(f, 8), FFC_OK);
+    for (long k = 0; k < nt; k++)
+        if (Ti[k] != Tj[k]) Tv[k] *= 1.01;
+    for (int i = 0; i < N; i++)
+        for (int j = 0; j < N; j++)
+            if (i != j) D[i + j * N] *= 1.01;
+    assert_int_equal(ffc_full_solve(f, N, nt, Ti, Tj, Tv, 1, b, x, &err), FFC_OK);
+    test_dense_solve(N, D, b, xd);
+    for (int i = 0; i < N; i++) assert_close(x[i], xd[i], 1e-12 * (1 + fabs(xd[i])));
+    long reused = 0;
+    assert_int_equal(ffc_full_reuse_info(f, &reused, NULL), FFC_OK);
+    assert_int_equal(reused, 1);
+    assert_int_equal(ffc_full_set_reuse(f, 0), FFC_OK);
     Tv[k0] = -D[N + 1]; D[0] = -D[N + 1];   /* indefinite */
     assert_int_equal(ffc_full_solve(f, N, nt, Ti, Tj, Tv, 1, b, x, &err), FFC_OK);
     test_dense_solve(N, D, b, xd);
