@@ -18,11 +18,15 @@ namespace {
 } // namespace
 
 
-// ffcMassSpread(M, spread, T): the interpolation T of the redistributed
-// mass T' M T (ffc_mass_spread): the dofs with spread[i] != 0 take the
-// mean of their neighbours in M off that set. Returns the spread dofs
-// that kept their own row (no neighbour off the set).
-long massSpread(Matrice_Creuse<double> *const &M, KN<double> *const &spread, Matrice_Creuse<double> *const &T)
+// ffcMassSpread(M, spread, X, T): the interpolation T of the redistributed
+// mass T' M T (ffc_mass_spread) of a vector space [Pk, Pk, Pk] (dof i of
+// component i % 3): the dofs with spread[i] != 0 move with their
+// neighbours in M off that set, by weights that reproduce the rigid
+// motions at the dofs' positions X (3 per dof: x, y, z; X empty: the mean
+// by |M_ij|). Returns the spread dofs whose row does not reproduce them
+// (kept their own row, or too few neighbours off the set).
+long massSpread(Matrice_Creuse<double> *const &M, KN<double> *const &spread, KN<double> *const &X,
+                Matrice_Creuse<double> *const &T)
 {
     const char *fn = "ffcMassSpread";
     std::vector<long> Mi, Mj;
@@ -35,18 +39,40 @@ long massSpread(Matrice_Creuse<double> *const &M, KN<double> *const &spread, Mat
         fail(fn, s.str());
     }
     need_finite(fn, "spread", spread);
+    if (!X) fail(fn, "argument 'X': array is not defined");
+    if (n % 3) {
+        std::ostringstream s;
+        s << "argument 'M': " << n << " rows, not a vector space's (3 per node)";
+        fail(fn, s.str());
+    }
+    if (X->N() != 0 && X->N() != 3 * n) {
+        std::ostringstream s;
+        s << "argument 'X': size " << X->N() << ", expected " << 3 * n << " (3 per row of M) or 0";
+        fail(fn, s.str());
+    }
+    need_finite(fn, "X", X);
     if (!T) fail(fn, "argument 'T': matrix is not defined");
     for (size_t k = 0; k < Mv.size(); k++)
         if (!std::isfinite(Mv[k])) fail(fn, "argument 'M': a non-finite entry");
-    const long nm = (long)Mv.size(), cap = n + nm;
-    std::vector<long> Ti(cap), Tj(cap);
-    std::vector<double> Tv(cap), w(n);
-    long nt = 0, kept = 0;
-    int st = ffc_mass_spread(n, nm, Mi.data(), Mj.data(), Mv.data(), &(*spread)[0], cap, Ti.data(), Tj.data(),
-                             Tv.data(), &nt, &kept, w.data());
+    const long nm = (long)Mv.size();
+    const double *x = X->N() ? &(*X)[0] : nullptr;
+    std::vector<long> comp(n);
+    for (long i = 0; i < n; i++) comp[i] = i % 3;
+    long cap = n + nm, nt = 0, kept = 0, inexact = 0;
+    std::vector<long> Ti, Tj;
+    std::vector<double> Tv;
+    int st = FFC_ERR_CAPACITY;
+    for (int pass = 0; pass < 2 && st == FFC_ERR_CAPACITY; pass++) {
+        Ti.resize(cap);
+        Tj.resize(cap);
+        Tv.resize(cap);
+        st = ffc_mass_spread(n, nm, Mi.data(), Mj.data(), Mv.data(), x, comp.data(), &(*spread)[0], cap, Ti.data(), Tj.data(),
+                             Tv.data(), &nt, &kept, &inexact);
+        cap = nt;
+    }
     if (st) fail(fn, std::string("the interpolation: ") + ffc_strerror(st));
     triplets_to_matrix(fn, n, nt, Ti.data(), Tj.data(), Tv.data(), false, T);
-    return kept;
+    return kept + inexact;
 }
 
 // ffcBulk(C, K, maxContactDofs = 4000): the scene keeps the bulk stiffness K

@@ -146,19 +146,26 @@ int ffc_hyper_assemble(int law, const ffc_tets *m, const double lam[], const dou
 /* ------------------------------------------------ mass redistribution */
 /* The interpolation T (n x n) of a redistributed mass M_red = T' M T for
  * contact dynamics: row i is e_i for a dof off the contact surfaces
- * (spread[i] == 0); a dof on them (spread[i] != 0) takes the mean of the
- * dofs off the surfaces that the mass matrix (triplets Mi, Mj, Mv [nm],
- * duplicates allowed) couples to it, weighted by |M_ij|.  Rows sum to 1
- * (total mass and linear momentum kept), T T = T, and M_red has no mass on
- * the surface dofs, which then follow the quasi-static balance of elastic
- * and contact forces: no contact chatter, and the trapezoidal rule keeps
- * the energy in persistent contact.  A surface dof coupled to no dof off
- * the surfaces (a body one element thick) keeps its row e_i: *kept counts
- * them.  T goes to the triplets (Ti, Tj, Tv)[cap], *nt of them (the count
- * needed, with FFC_ERR_CAPACITY; at most n + nm).  Work: wsum[n]. */
-int ffc_mass_spread(long n, long nm, const long Mi[], const long Mj[], const double Mv[],
-                    const double spread[], long cap, long Ti[], long Tj[], double Tv[], long *nt,
-                    long *kept, double wsum[]);
+ * (spread[i] == 0); a dof on them (spread[i] != 0) takes a weighted mean
+ * of the dofs off the surfaces that the mass matrix (triplets Mi, Mj, Mv
+ * [nm], duplicates allowed) couples to it.  Rows sum to 1 (total mass and
+ * linear momentum kept), T T = T, and M_red has no mass on the surface
+ * dofs, which then follow the quasi-static balance of elastic and contact
+ * forces: no contact chatter, and the trapezoidal rule keeps the energy in
+ * persistent contact.  With the dofs' positions X[n*3] the weights also
+ * reproduce the coordinates, all three or, with the dofs' components
+ * comp[n] (0, 1, 2; -1: all three), the two other than the dof's own:
+ * T v = v for a rigid motion, so the centre of mass and the inertia tensor
+ * are kept.  Where a dof's neighbours do not span those coordinates, dofs
+ * two or three steps away join; *inexact counts the rows where even those
+ * do not (their weights are then the neighbours' mean by |M_ij|).  X NULL:
+ * the weights are |M_ij| / sum_j |M_ij| over the neighbours.  A surface
+ * dof coupled to no dof off the surfaces (a body one element thick) keeps
+ * its row e_i: *kept counts them.  T goes to the triplets (Ti, Tj, Tv)
+ * [cap], *nt of them (the count needed, with FFC_ERR_CAPACITY). */
+int ffc_mass_spread(long n, long nm, const long Mi[], const long Mj[], const double Mv[], const double X[],
+                    const long comp[], const double spread[], long cap, long Ti[], long Tj[], double Tv[], long *nt,
+                    long *kept, long *inexact);
 
 /* ------------------------------------------------- quadratic tetrahedra */
 /* Numbers the nodes of P2 tetrahedra T[nt*4] (nv vertices) as FreeFEM
