@@ -18,16 +18,24 @@ int ffc_points_vtk(const char *path, long n, const double P[])
                 P[k * FFC_POINT_COLS + FFC_PT_Z]);
     fprintf(f, "VERTICES %ld %ld\n", n, 2 * n);
     for (long k = 0; k < n; k++) fprintf(f, "1 %ld\n", k);
-    static const char *names[3] = {"gap", "pressure", "active"};
-    static const int cols[3] = {FFC_PT_GAP, FFC_PT_P, FFC_PT_ACTIVE};
+    /* the point data: gap, pressure, contact status (0 open, 1 stick, 2
+     * slip; a frictionless point in contact is 2), the friction traction
+     * on the slave, the dissipation density */
+    static const char *names[4] = {"gap", "pressure", "status", "dissipation"};
     fprintf(f, "POINT_DATA %ld\n", n);
-    for (int c = 0; c < 3; c++) {
+    for (int c = 0; c < 4; c++) {
         fprintf(f, "SCALARS %s double 1\nLOOKUP_TABLE default\n", names[c]);
         for (long k = 0; k < n; k++) {
-            double v = P[k * FFC_POINT_COLS + cols[c]];
+            const double *row = P + k * FFC_POINT_COLS;
+            double v = c == 0 ? row[FFC_PT_GAP] : c == 1 ? row[FFC_PT_P] : c == 3 ? row[FFC_PT_DISS]
+                     : row[FFC_PT_ACTIVE] == 0 ? 0.0 : row[FFC_PT_STATE] == 1 ? 1.0 : 2.0;
             fprintf(f, "%.17g\n", isfinite(v) ? v : -1.0); /* no partner: gap -1 */
         }
     }
+    fprintf(f, "VECTORS friction_traction double\n");
+    for (long k = 0; k < n; k++)
+        fprintf(f, "%.17g %.17g %.17g\n", P[k * FFC_POINT_COLS + FFC_PT_TX], P[k * FFC_POINT_COLS + FFC_PT_TY],
+                P[k * FFC_POINT_COLS + FFC_PT_TZ]);
     int bad = ferror(f);
     if (fclose(f) != 0 || bad) return FFC_ERR_VALUE;
     return FFC_OK;

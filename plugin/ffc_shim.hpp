@@ -295,7 +295,7 @@ long sceneInverted(const Named &, FFScene *const &C, KN<double> *const &u);
 long sceneSurfaceDofs(const Named &, FFScene *const &C, KN<double> *const &mask);
 
 // the calls of ffc_shim_solve.cpp
-long massSpread(Matrice_Creuse<double> *const &M, KN<double> *const &spread, KN<double> *const &X,
+long massSpread(Matrice_Creuse<double> *const &M, KN<double> *const &spread, KNM<double> *const &X,
                 Matrice_Creuse<double> *const &T);
 double sceneHyperForce(const Named &, FFScene *const &C, KN<double> *const &u, KN<double> *const &l1, KN<double> *const &l2,
                        KN<double> *const &f);

@@ -22,10 +22,10 @@ namespace {
 // mass T' M T (ffc_mass_spread) of a vector space [Pk, Pk, Pk] (dof i of
 // component i % 3): the dofs with spread[i] != 0 move with their
 // neighbours in M off that set, by weights that reproduce the rigid
-// motions at the dofs' positions X (3 per dof: x, y, z; X empty: the mean
-// by |M_ij|). Returns the spread dofs whose row does not reproduce them
+// motions at the dofs' positions X (a row per dof: x, y, z; X with no
+// row: the mean by |M_ij|). Returns the spread dofs whose row does not reproduce them
 // (kept their own row, or too few neighbours off the set).
-long massSpread(Matrice_Creuse<double> *const &M, KN<double> *const &spread, KN<double> *const &X,
+long massSpread(Matrice_Creuse<double> *const &M, KN<double> *const &spread, KNM<double> *const &X,
                 Matrice_Creuse<double> *const &T)
 {
     const char *fn = "ffcMassSpread";
@@ -45,17 +45,22 @@ long massSpread(Matrice_Creuse<double> *const &M, KN<double> *const &spread, KN<
         s << "argument 'M': " << n << " rows, not a vector space's (3 per node)";
         fail(fn, s.str());
     }
-    if (X->N() != 0 && X->N() != 3 * n) {
+    if (X->N() != 0 && (X->N() != n || X->M() != 3)) {
         std::ostringstream s;
-        s << "argument 'X': size " << X->N() << ", expected " << 3 * n << " (3 per row of M) or 0";
+        s << "argument 'X': " << X->N() << " x " << X->M() << ", expected " << n << " x 3 (a row per row of M) or no row";
         fail(fn, s.str());
     }
-    need_finite(fn, "X", X);
+    std::vector<double> pos(X->N() ? 3 * n : 0);
+    for (long i = 0; i < (long)pos.size() / 3; i++)
+        for (int c = 0; c < 3; c++) {
+            pos[3 * i + c] = (*X)((int)i, c);
+            if (!std::isfinite(pos[3 * i + c])) fail(fn, "argument 'X': a non-finite entry");
+        }
     if (!T) fail(fn, "argument 'T': matrix is not defined");
     for (size_t k = 0; k < Mv.size(); k++)
         if (!std::isfinite(Mv[k])) fail(fn, "argument 'M': a non-finite entry");
     const long nm = (long)Mv.size();
-    const double *x = X->N() ? &(*X)[0] : nullptr;
+    const double *x = pos.empty() ? nullptr : pos.data();
     std::vector<long> comp(n);
     for (long i = 0; i < n; i++) comp[i] = i % 3;
     long cap = n + nm, nt = 0, kept = 0, inexact = 0;

@@ -78,7 +78,7 @@ static void init()
     Global.Add("ffcRankSum", "(", new OneOperator1_<long, Matrice_Creuse<double> *>(ffcRankSumMatrix));
     Global.Add("ffcParallelSolve", "(", new OneOperator4_<long, Matrice_Creuse<double> *, KN<double> *, KN<double> *, long>(parallelSolveOwn));
     Global.Add("ffcMassSpread", "(",
-               new OneOperator4_<long, Matrice_Creuse<double> *, KN<double> *, KN<double> *, Matrice_Creuse<double> *>(massSpread));
+               new OneOperator4_<long, Matrice_Creuse<double> *, KN<double> *, KNM<double> *, Matrice_Creuse<double> *>(massSpread));
     Global.Add("ffcInverted", "(", new OneOperator2_<long, pmesh3, KN<double> *>(ffcInverted));
     Global.Add("ffcP2Nodes", "(", new OneOperator2_<long, pmesh3, KN<double> *>(ffcP2Nodes));
     Global.Add("ffcSaveVTK", "(", new OneOperator2_<long, string *, KNM<double> *>(ffcSaveVTK));

@@ -296,8 +296,9 @@ int ffc_points_nodes(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
                      long *bad);
 
 /* Writes the rows of ffc_points (n points) as a legacy-VTK point cloud
- * with scalar fields gap, pressure, active; FFC_ERR_VALUE if the file
- * cannot be written. */
+ * with scalar fields gap, pressure, status (0 open, 1 stick, 2 slip or
+ * frictionless contact), dissipation and the vector friction_traction;
+ * FFC_ERR_VALUE if the file cannot be written. */
 int ffc_points_vtk(const char *path, long n, const double P[]);
 
 /* Writes the rows k of the column-major table A[ncol*n] (column j holds
