@@ -360,7 +360,7 @@ int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const 
     }
     memcpy(p->Fs, Fs, nfs * s->nper * sizeof *Fs);
     memcpy(p->Fm, Fm, nfm * s->nper * sizeof *Fm);
-    if (o->method == FFC_METHOD_MORTAR) {
+    {
         unsigned char *m = calloc(s->nv, 1);
         if (!m) { pair_free(p); return FFC_ERR_MEMORY; }
         for (long i = 0; i < nfs * s->nper; i++) /* (the multipliers' nodes: the facets' vertices) */

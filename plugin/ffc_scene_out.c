@@ -98,24 +98,39 @@ long ffc_scene_nlinks(const ffc_scene *s, int pair)
     return n;
 }
 
-long ffc_scene_npoints(const ffc_scene *s, int pair)
+/* the rows of pair p's output: its nodes (node-to-surface: every slave
+ * node; mortar, or a nodal pair asked for nodes: the facets' vertices) or
+ * its links; FFC_ERR_VALUE: nodes asked of pointwise multipliers */
+static long pair_rows(const scene_pair *p, int nodes)
+{
+    if (p->o.method == FFC_METHOD_NTS) return p->nn;
+    if (p->o.method == FFC_METHOD_MORTAR) return p->nsn;
+    if (nodes) return p->o.nodal ? p->nsn : FFC_ERR_VALUE;
+    return p->nl;
+}
+
+long ffc_scene_npoints(const ffc_scene *s, int pair, int nodes)
 {
     if (!s) return FFC_ERR_NULL;
     if (pair < -1 || pair >= s->np) return FFC_ERR_INDEX;
     long n = 0;
     for (int k = 0; k < s->np; k++)
-        if (pair < 0 || k == pair)
-            n += s->p[k].o.method == FFC_METHOD_NTS ? s->p[k].nn : s->p[k].o.method == FFC_METHOD_MORTAR ? s->p[k].nsn : s->p[k].nl;
+        if (pair < 0 || k == pair) {
+            long r = pair_rows(&s->p[k], nodes);
+            if (r < 0) return r;
+            n += r;
+        }
     return n;
 }
 
-int ffc_scene_points(const ffc_scene *s, const double u[], int pair, long cap, double P[], long *n, long *bad)
+int ffc_scene_points(const ffc_scene *s, const double u[], int pair, int nodes, long cap, double P[], long *n,
+                     long *bad)
 {
     long dummy;
     if (!bad) bad = &dummy;
     *bad = -1;
     if (!s || !u || !P || !n) return FFC_ERR_NULL;
-    const long need = ffc_scene_npoints(s, pair);
+    const long need = ffc_scene_npoints(s, pair, nodes);
     if (need < 0) return (int)need;
     *n = need;
     if (cap < need) return FFC_ERR_CAPACITY;
@@ -130,10 +145,10 @@ int ffc_scene_points(const ffc_scene *s, const double u[], int pair, long cap, d
             continue;
         }
         const pair_call c = ffc__pair_view(s, p, u, FFC_TANGENT_NONE);
-        if (p->o.method == FFC_METHOD_MORTAR) {
+        if (p->o.method == FFC_METHOD_MORTAR || nodes) {
             long got;
-            int st = ffc_points_nodes(&c.fx, &c.v, 0, p->nl, p->links, p->lam, p->lam_t, &c.law, p->nsn,
-                                      P + row * FFC_POINT_COLS, &got, bad);
+            int st = ffc_points_nodes(&c.fx, &c.v, p->o.method == FFC_METHOD_MORTAR ? 0 : ffc__pair_qdeg(p), p->nl,
+                                      p->links, p->lam, p->lam_t, &c.law, p->nsn, P + row * FFC_POINT_COLS, &got, bad);
             if (st) return st;
             row += p->nsn;
             continue;

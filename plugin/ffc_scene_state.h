@@ -13,7 +13,7 @@ typedef struct {
     int nq;            /* quadrature points per slave facet */
     long nl;           /* links: nfs * nq (mortar: as the last search found) */
     long lcap;         /* capacity of links (mortar) */
-    long nsn;          /* distinct slave nodes (mortar: its output rows) */
+    long nsn;          /* distinct slave vertices (the rows of node output: mortar, nodal pairs asked for nodes) */
     long *mp, nmp, mpcap; /* mortar: the facet pairs of the last search [2 mpcap], their count */
     ffc_mortar_edge *edges; /* [ecap] mortar: the moving-edge points of the segments */
     long ne, ecap;

@@ -191,6 +191,7 @@ long sceneReset(const Named &, FFScene *const &C)
 // at the last ffcCommit (the converged step).
 basicAC_F0::name_and_type pair_only_names[] = {{"pair", &typeid(long)}};
 basicAC_F0::name_and_type stat_names[] = {{"pair", &typeid(long)}, {"step", &typeid(long)}};
+basicAC_F0::name_and_type points_names[] = {{"pair", &typeid(long)}, {"nodes", &typeid(long)}};
 
 double sceneStat(const Named &nm, FFScene *const &C, string *const &name)
 {
@@ -216,20 +217,32 @@ double sceneStat(const Named &nm, FFScene *const &C, string *const &name)
     return v;
 }
 
-// ffcPoints(C, u, P, pair = -1): one row per slave point (mortar: per slave node; columns of
-// ffc_points: x, y, z, gap, pressure, active, area, master facet, traction
-// x, y, z, friction state, dissipation); returns the rows.
+// ffcPoints(C, u, P, pair = -1, nodes = 0): one row per slave point
+// (augmented Lagrangian: per quadrature point; node-to-surface and mortar,
+// or with nodes = 1 every method with nodal multipliers: per slave node;
+// columns of ffc_points: x, y, z, gap, pressure, active, area, master
+// facet, traction x, y, z, friction state, dissipation); returns the rows.
 long scenePoints(const Named &nm, FFScene *const &C, KN<double> *const &u, KNM<double> *const &P)
 {
     const char *fn = "ffcPoints";
     SceneData &d = need_scene(fn, C);
     const int k = need_pair_index(fn, d, nm.integer(0, -1), true);
+    const long nodes = nm.integer(1, 0);
+    if (nodes != 0 && nodes != 1) {
+        std::ostringstream s;
+        s << "argument 'nodes': " << nodes << " is not 0 (the method's own points) or 1 (the slave nodes)";
+        fail(fn, s.str());
+    }
     const double *pu = need_scene_u(fn, d, u);
     if (!P) fail(fn, "argument 'P': array is not defined");
-    const long n = ffc_scene_npoints(d.s, k);
+    const long n = ffc_scene_npoints(d.s, k, (int)nodes);
+    if (n == FFC_ERR_VALUE)
+        fail(fn, "argument 'nodes': 1, but a pair of this call has pointwise multipliers (nodal = 0): its values live "
+                 "at the quadrature points only");
+    if (n < 0) scene_error(fn, (int)n, -1, "the points");
     std::vector<double> rows(n * FFC_POINT_COLS + 1);
     long got = 0, bad = -1;
-    int st = ffc_scene_points(d.s, pu, k, n, rows.data(), &got, &bad);
+    int st = ffc_scene_points(d.s, pu, k, (int)nodes, n, rows.data(), &got, &bad);
     if (st) scene_error(fn, st, bad, "the points");
     P->resize(n, FFC_POINT_COLS);
     for (long r = 0; r < n; r++)

@@ -30,7 +30,7 @@ void init_scene()
     Global.Add("ffcRestore", "(", named<long, S>("ffcRestore", nullptr, 0, sceneRestore));
     Global.Add("ffcReset", "(", named<long, S>("ffcReset", nullptr, 0, sceneReset));
     Global.Add("ffcStat", "(", named<double, S, string *>("ffcStat", stat_names, 2, sceneStat));
-    Global.Add("ffcPoints", "(", named<long, S, V, KNM<double> *>("ffcPoints", pair_only_names, 1, scenePoints));
+    Global.Add("ffcPoints", "(", named<long, S, V, KNM<double> *>("ffcPoints", points_names, 2, scenePoints));
     Global.Add("ffcMultipliers", "(", named<long, S, long, V>("ffcMultipliers", nullptr, 0, sceneMultipliers));
     Global.Add("ffcMultipliers", "(", named<long, S, long, V, V>("ffcMultipliers", nullptr, 0, sceneMultipliersT));
     Global.Add("ffcInverted", "(", named<long, S, V>("ffcInverted", nullptr, 0, sceneInverted));

@@ -179,10 +179,14 @@ long ffc_scene_nlinks(const ffc_scene *s, int pair);
 
 /* ffc_points rows of pair k (k = -1: every pair in order) into
  * P[cap*FFC_POINT_COLS]; *n the rows (needed, with FFC_ERR_CAPACITY).
- * Mortar pairs give the rows of ffc_points_nodes, one per slave node;
- * ffc_scene_npoints: the number of rows. */
-long ffc_scene_npoints(const ffc_scene *s, int pair);
-int ffc_scene_points(const ffc_scene *s, const double u[], int pair, long cap, double P[], long *n, long *bad);
+ * Mortar pairs give the rows of ffc_points_nodes, one per slave node,
+ * node-to-surface pairs one per slave node too; with nodes = 1 nodal
+ * augmented Lagrangian pairs give ffc_points_nodes' rows as well (every
+ * method's values on the slave nodes; FFC_ERR_VALUE for a pair with
+ * pointwise multipliers). ffc_scene_npoints: the number of rows. */
+long ffc_scene_npoints(const ffc_scene *s, int pair, int nodes);
+int ffc_scene_points(const ffc_scene *s, const double u[], int pair, int nodes, long cap, double P[], long *n,
+                     long *bad);
 
 /* Copies of pair k's multipliers lam[nlam] and lam_t[3 nlam] (either may
  * be NULL); *n = nlam (nodes for the nodal law, links otherwise). */

@@ -756,11 +756,11 @@ static void test_scene_pair(void **state)
     for (long v = NVM; v < NV; v++) fz += R[3 * v + 2];
     /* the penalty pressure eps g = 1 over the slave's area 0.49 pushes it up: -R */
     assert_close(fz, -1e3 * 0.001 * 0.49, 1e-12);
-    const long np = ffc_scene_npoints(s, 0);
+    const long np = ffc_scene_npoints(s, 0, 0);
     assert_int_equal(np, (NS + 1) * (NS + 1));
     double *P = malloc(np * FFC_POINT_COLS * sizeof *P);
     long n;
-    assert_int_equal(ffc_scene_points(s, u, 0, np, P, &n, &bad), FFC_OK);
+    assert_int_equal(ffc_scene_points(s, u, 0, 0, np, P, &n, &bad), FFC_OK);
     double area = 0;
     for (long r = 0; r < n; r++) {
         assert_close(P[r * FFC_POINT_COLS + 3], -0.001, 1e-15); /* weighted gap = nodal gap */
@@ -840,11 +840,11 @@ static void test_scene_pair_p2(void **state)
         assert_close(R[3 * v], 0.0, 1e-13);
         assert_close(R[3 * v + 1], 0.0, 1e-13);
     }
-    const long np = ffc_scene_npoints(s, 0);
+    const long np = ffc_scene_npoints(s, 0, 0);
     assert_int_equal(np, (NS + 1) * (NS + 1)); /* the vertices only */
     double *P = malloc(np * FFC_POINT_COLS * sizeof *P);
     long n;
-    assert_int_equal(ffc_scene_points(s, u, 0, np, P, &n, &bad), FFC_OK);
+    assert_int_equal(ffc_scene_points(s, u, 0, 0, np, P, &n, &bad), FFC_OK);
     double area = 0;
     for (long r = 0; r < n; r++) {
         assert_close(P[r * FFC_POINT_COLS + 3], -0.001, 1e-15);
