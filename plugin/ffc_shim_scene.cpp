@@ -270,7 +270,25 @@ const char *method_name(int m) { return m == FFC_METHOD_NTS ? "nts" : m == FFC_M
 
 ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &d, ffc_pair_opts o)
 {
-    const std::string method = nm.str(PO_METHOD, method_name(o.method));
+    // a pair added without a method: the first pair's, or for the first
+    // the augmented Lagrangian, named once (measured per kind of scene,
+    // tests/bench/README.md: the one method that runs every kind)
+    std::string def = method_name(o.method);
+    if (fn == std::string("ffcAddPair") && !nm.has(PO_METHOD)) {
+        if (ffc_scene_npairs(d.s) > 0) {
+            ffc_pair_opts o0;
+            ffc_scene_pair_opts(d.s, 0, &o0);
+            def = method_name(o0.method);
+        } else {
+            int rank;
+            ffc_mpi_world(&rank, nullptr, nullptr);
+            if (rank == 0)
+                std::cout << "ffcAddPair: method \"al\" (augmented Lagrangian), the default: it runs every kind of "
+                             "scene; method = \"nts\" or \"mortar\" names another (README: Which method to choose)"
+                          << std::endl;
+        }
+    }
+    const std::string method = nm.str(PO_METHOD, def);
     if (method != "al" && method != "nts" && method != "mortar") {
         std::ostringstream s;
         s << "argument 'method': \"" << method << "\" is not a method of scenes (\"al\": augmented Lagrangian, \"nts\": "
