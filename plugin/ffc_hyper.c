@@ -83,14 +83,66 @@ static int svk(double lam, double mu, const double F[9], double *W, double P[9],
     return FFC_OK;
 }
 
-int ffc_hyper_point(int law, double lam, double mu, const double F[9], double *W, double P[9], double A[81])
+/* Formulation (compressible Mooney-Rivlin): with C = F^T F, b = F F^T,
+ * I1 = tr C, I2 = (I1^2 - C : C) / 2, J = det F, B = F^-1, and the
+ * constants c10 = mu / 2 - c01, lambda' = lambda - 4 c01 (so that its
+ * linearization at F = I is linear elasticity of lambda and mu),
+ *     W = c10 (I1 - 3) + c01 (I2 - 3) - 2 (c10 + 2 c01) ln J + lambda' / 2 (ln J)^2,
+ * the Neo-Hookean law of lambda' and 2 c10 plus W2 = c01 (I2 - 3) - 4 c01 ln J:
+ * from dI1 / dF = 2 F and dI2 / dF = 2 (I1 F - F C),
+ *     P2 = 2 c01 (I1 F - F C) - 4 c01 F^-T,
+ * and from d(F C)_iJ / dF_kL = d_ik C_LJ + F_iL F_kJ + b_ik d_JL,
+ *     A2_iJkL = 2 c01 (2 F_iJ F_kL + I1 d_ik d_JL - d_ik C_LJ - F_iL F_kJ
+ *               - b_ik d_JL) + 4 c01 B_Jk B_Li.
+ * (Small strain: I1 - 3 - 2 ln J = 2 eps : eps and I2 - 3 - 4 ln J =
+ * 2 eps : eps + 2 (tr eps)^2, to second order.)  Defined for J > 0 and
+ * 0 <= c01 <= mu / 2 (c10 >= 0). */
+static int mooneyrivlin(double lam, double mu, double c01, const double F[9], double *W, double P[9], double A[81])
+{
+    if (!(c01 >= 0) || !(c01 <= 0.5 * mu)) return FFC_ERR_VALUE;
+    const double c10 = 0.5 * mu - c01;
+    int st = neohookean(lam - 4.0 * c01, 2.0 * c10, F, W, P, A);
+    if (st || c01 == 0) return st;
+    double B[9], C[9], b[9];
+    const double J = inverse3(F, B);
+    for (int a = 0; a < 3; a++)
+        for (int c = 0; c < 3; c++) {
+            double x = 0, y = 0;
+            for (int k = 0; k < 3; k++) { x += F[3 * k + a] * F[3 * k + c]; y += F[3 * a + k] * F[3 * c + k]; }
+            C[3 * a + c] = x;
+            b[3 * a + c] = y;
+        }
+    const double I1 = C[0] + C[4] + C[8];
+    double CC = 0;
+    for (int k = 0; k < 9; k++) CC += C[k] * C[k];
+    const double I2 = 0.5 * (I1 * I1 - CC);
+    *W += c01 * (I2 - 3.0) - 4.0 * c01 * log(J);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            const double FC = F[3 * i] * C[j] + F[3 * i + 1] * C[3 + j] + F[3 * i + 2] * C[6 + j];
+            P[3 * i + j] += 2.0 * c01 * (I1 * F[3 * i + j] - FC) - 4.0 * c01 * B[3 * j + i];
+        }
+    if (!A) return FFC_OK;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            for (int k = 0; k < 3; k++)
+                for (int l = 0; l < 3; l++)
+                    A[27 * i + 9 * j + 3 * k + l] +=
+                        2.0 * c01 * (2.0 * F[3 * i + j] * F[3 * k + l] + (i == k && j == l ? I1 : 0.0)
+                                     - (i == k ? C[3 * l + j] : 0.0) - F[3 * i + l] * F[3 * k + j] - (j == l ? b[3 * i + k] : 0.0))
+                        + 4.0 * c01 * B[3 * j + k] * B[3 * l + i];
+    return FFC_OK;
+}
+
+int ffc_hyper_point(int law, double lam, double mu, double c01, const double F[9], double *W, double P[9], double A[81])
 {
     if (!F || !W || !P) return FFC_ERR_NULL;
     for (int k = 0; k < 9; k++)
         if (!isfinite(F[k])) return FFC_ERR_NONFINITE;
-    if (!isfinite(lam) || !isfinite(mu)) return FFC_ERR_NONFINITE;
+    if (!isfinite(lam) || !isfinite(mu) || !isfinite(c01)) return FFC_ERR_NONFINITE;
     if (law == FFC_HYPER_NEOHOOKEAN) return neohookean(lam, mu, F, W, P, A);
     if (law == FFC_HYPER_SVK) return svk(lam, mu, F, W, P, A);
+    if (law == FFC_HYPER_MOONEYRIVLIN) return mooneyrivlin(lam, mu, c01, F, W, P, A);
     return FFC_ERR_VALUE;
 }
 
@@ -179,25 +231,32 @@ void ffc_tets_pattern_ij(long nn, const long rp[], const long adj[], long Ki[], 
  *     K_ai,bk = sum_q w_q G_a[J] A_iJkL(F_q) G_b[L],
  * symmetric as A_iJkL = A_kLiJ for a stored energy.  P1: one point at the
  * centroid (F is constant); P2: the 14-point rule of degree 5. */
-int ffc_hyper_assemble(int law, const ffc_tets *m, const double lam[], const double mu[], const double u[],
-                       const long rp[], const long adj[], double *W, double f[], double Kv[], ffc_error *err)
+int ffc_hyper_assemble(int law, const ffc_tets *m, const double lam[], const double mu[], const double c01[],
+                       const double u[], const long rp[], const long adj[], double *W, double f[], double Kv[],
+                       ffc_error *err)
 {
     char msg[200];
     if (err) *err = (ffc_error){0, FFC_AT_NONE, -1, ""};
     int st = check_tets(m, err);
     if (st) return st;
-    if (law != FFC_HYPER_NEOHOOKEAN && law != FFC_HYPER_SVK) {
-        snprintf(msg, sizeof msg, "law %d: neither FFC_HYPER_NEOHOOKEAN nor FFC_HYPER_SVK", law);
+    if (law != FFC_HYPER_NEOHOOKEAN && law != FFC_HYPER_SVK && law != FFC_HYPER_MOONEYRIVLIN) {
+        snprintf(msg, sizeof msg, "law %d: not FFC_HYPER_NEOHOOKEAN, FFC_HYPER_SVK or FFC_HYPER_MOONEYRIVLIN", law);
         return fail(err, FFC_ERR_VALUE, FFC_AT_NONE, -1, msg);
     }
-    if ((m->nt > 0 && (!lam || !mu)) || (m->nn > 0 && !u) || (Kv && (!rp || !adj)))
+    const int mr = law == FFC_HYPER_MOONEYRIVLIN;
+    if ((m->nt > 0 && (!lam || !mu || (mr && !c01))) || (m->nn > 0 && !u) || (Kv && (!rp || !adj)))
         return fail(err, FFC_ERR_NULL, FFC_AT_NONE, -1, "a required array is missing");
     const long nt = m->nt, npe = m->npe, nn = m->nn;
-    for (long t = 0; t < nt; t++)
-        if (!isfinite(lam[t]) || !isfinite(mu[t])) {
-            snprintf(msg, sizeof msg, "tetrahedron %ld: Lame's constants %g, %g", t, lam[t], mu[t]);
+    for (long t = 0; t < nt; t++) {
+        if (!isfinite(lam[t]) || !isfinite(mu[t]) || (mr && !isfinite(c01[t]))) {
+            snprintf(msg, sizeof msg, "tetrahedron %ld: Lame's constants %g, %g, c01 %g", t, lam[t], mu[t], mr ? c01[t] : 0.0);
             return fail(err, FFC_ERR_NONFINITE, FFC_AT_ELEMENT, t, msg);
         }
+        if (mr && !(c01[t] >= 0 && c01[t] <= 0.5 * mu[t])) {
+            snprintf(msg, sizeof msg, "tetrahedron %ld: c01 = %g is outside [0, mu / 2 = %g]", t, c01[t], 0.5 * mu[t]);
+            return fail(err, FFC_ERR_VALUE, FFC_AT_ELEMENT, t, msg);
+        }
+    }
     for (long k = 0; k < 3 * nn; k++)
         if (!isfinite(u[k])) {
             snprintf(msg, sizeof msg, "displacement dof %ld is %g", k, u[k]);
@@ -242,7 +301,8 @@ int ffc_hyper_assemble(int law, const ffc_tets *m, const double lam[], const dou
                     for (int j = 0; j < 3; j++) F[3 * i + j] += ua[i] * G[a][j];
             }
             st = law == FFC_HYPER_NEOHOOKEAN ? neohookean(lam[t], mu[t], F, &Wq, P, Kv ? A : NULL)
-                                             : svk(lam[t], mu[t], F, &Wq, P, Kv ? A : NULL);
+                 : law == FFC_HYPER_SVK      ? svk(lam[t], mu[t], F, &Wq, P, Kv ? A : NULL)
+                                             : mooneyrivlin(lam[t], mu[t], c01[t], F, &Wq, P, Kv ? A : NULL);
             if (st) {
                 snprintf(msg, sizeof msg, "tetrahedron %ld is inverted (det F <= 0 at a quadrature point)", t);
                 return fail(err, st, FFC_AT_ELEMENT, t, msg);

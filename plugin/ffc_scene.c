@@ -144,6 +144,7 @@ ffc_bulk_law ffc_bulk_law_of(ffc_bulk_kind kind)
     switch (kind) {
     case FFC_BULK_NEOHOOKEAN: return (ffc_bulk_law){FFC_BULK_NEOHOOKEAN, 0, 1, 1};
     case FFC_BULK_SVK: return (ffc_bulk_law){FFC_BULK_SVK, 0, 1, 1};
+    case FFC_BULK_MOONEYRIVLIN: return (ffc_bulk_law){FFC_BULK_MOONEYRIVLIN, 0, 1, 1};
     case FFC_BULK_USER: return (ffc_bulk_law){FFC_BULK_USER, 0, 1, 0};
     default: return (ffc_bulk_law){FFC_BULK_LINEAR, 1, 1, 0};
     }
@@ -153,7 +154,7 @@ int ffc_scene_set_law(ffc_scene *s, const ffc_bulk_law *law)
 {
     if (!s || !law) return FFC_ERR_NULL;
     if ((law->kind != FFC_BULK_LINEAR && law->kind != FFC_BULK_NEOHOOKEAN && law->kind != FFC_BULK_USER &&
-         law->kind != FFC_BULK_SVK) ||
+         law->kind != FFC_BULK_SVK && law->kind != FFC_BULK_MOONEYRIVLIN) ||
         (law->linear != 0 && law->linear != 1) || (law->symmetric != 0 && law->symmetric != 1) ||
         (law->finite != 0 && law->finite != 1) || (law->linear && law->finite))
         return FFC_ERR_VALUE;

@@ -259,7 +259,7 @@ enum { PO_METHOD, PO_MU, PO_EPSN, PO_EPST, PO_QDEG, PO_NODAL, PO_CREL, PO_CABS, 
        PO_SCALE, PO_DUAL, PO_DUALT, PO_N };
 enum { AS_TANGENT, AS_SYMMETRIC, AS_V, AS_DT, AS_DVDU, AS_N };
 extern basicAC_F0::name_and_type scene_names[], pair_names[], assemble_names[], motion_names[], pair_only_names[],
-    stat_names[], points_names[], bulk_names[], newton_names[], full_names[];
+    stat_names[], points_names[], bulk_names[], newton_names[], full_names[], hyper_names[];
 
 // the calls of ffc_shim_scene.cpp
 FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh);

@@ -82,8 +82,8 @@ string *sceneGetWord(const Named &nm, FFScene *const &C, string *const &name)
 }
 
 // ffcBulkIs(C, what): 1 when the scene's bulk is what ("linear",
-// "symmetric", "finite", its kind "elastic", "neohookean", "svk", "user", or
-// "hyperelastic": neohookean or svk)
+// "symmetric", "finite", its kind "elastic", "neohookean", "svk",
+// "mooneyrivlin", "user", or "hyperelastic": one of the three laws in C)
 long sceneBulkIs(const Named &, FFScene *const &C, string *const &what)
 {
     const char *fn = "ffcBulkIs";
@@ -97,9 +97,11 @@ long sceneBulkIs(const Named &, FFScene *const &C, string *const &what)
     if (w == "elastic") return l.kind == FFC_BULK_LINEAR;
     if (w == "neohookean") return l.kind == FFC_BULK_NEOHOOKEAN;
     if (w == "svk") return l.kind == FFC_BULK_SVK;
+    if (w == "mooneyrivlin") return l.kind == FFC_BULK_MOONEYRIVLIN;
     if (w == "user") return l.kind == FFC_BULK_USER;
-    if (w == "hyperelastic") return l.kind == FFC_BULK_NEOHOOKEAN || l.kind == FFC_BULK_SVK;
-    fail(fn, "argument 'what': '" + w + "' is not linear, symmetric, finite, elastic, neohookean, svk, hyperelastic or user");
+    if (w == "hyperelastic") return l.kind == FFC_BULK_NEOHOOKEAN || l.kind == FFC_BULK_SVK || l.kind == FFC_BULK_MOONEYRIVLIN;
+    fail(fn, "argument 'what': '" + w + "' is not linear, symmetric, finite, elastic, neohookean, svk, mooneyrivlin, "
+             "hyperelastic or user");
 }
 
 // ffcBulkText(C): the bulk in words ("neohookean: nonlinear, symmetric, finite deformation")
@@ -108,7 +110,7 @@ string *sceneBulkText(const Named &nm, FFScene *const &C)
     SceneData &d = need_scene("ffcBulkText", C);
     ffc_bulk_law l;
     ffc_scene_law(d.s, &l);
-    const char *kind[4] = {"elastic", "neohookean", "user", "svk"};
+    const char *kind[5] = {"elastic", "neohookean", "user", "svk", "mooneyrivlin"};
     std::string t = std::string("bulk = \"") + kind[l.kind] + "\": " + (l.linear ? "linear" : "nonlinear") + ", " +
                     (l.symmetric ? "symmetric" : "not symmetric") + ", " + (l.finite ? "finite deformation" : "small strain");
     return Add2StackOfPtr2Free(nm.s, new string(t));

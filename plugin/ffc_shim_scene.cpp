@@ -170,8 +170,9 @@ ffc_bulk_law need_law(const char *fn, const Named &nm)
     if (kind == "elastic") law = ffc_bulk_law_of(FFC_BULK_LINEAR);
     else if (kind == "neohookean") law = ffc_bulk_law_of(FFC_BULK_NEOHOOKEAN);
     else if (kind == "svk") law = ffc_bulk_law_of(FFC_BULK_SVK);
+    else if (kind == "mooneyrivlin") law = ffc_bulk_law_of(FFC_BULK_MOONEYRIVLIN);
     else if (kind == "user") law = ffc_bulk_law_of(FFC_BULK_USER);
-    else fail(fn, "argument 'bulk': \"" + kind + "\" is not \"elastic\", \"neohookean\", \"svk\" or \"user\"");
+    else fail(fn, "argument 'bulk': \"" + kind + "\" is not \"elastic\", \"neohookean\", \"svk\", \"mooneyrivlin\" or \"user\"");
     const char *flag[3] = {"bulkLinear", "bulkSymmetric", "bulkFinite"};
     int *val[3] = {&law.linear, &law.symmetric, &law.finite};
     for (int k = 0; k < 3; k++) {

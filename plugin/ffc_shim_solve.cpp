@@ -124,13 +124,14 @@ long sceneElastic(const Named &, FFScene *const &C, Matrice_Creuse<double> *cons
     return nnz;
 }
 
-// The scene's hyperelastic bulk (bulk = "neohookean" or "svk"; ffc_hyper_assemble
-// on [P1,P1,P1] or [P2,P2,P2]), at the displacement u (3 dofs per node),
-// with Lame's constants per tetrahedron (P0 arrays):
-//   ffcHyperForce(C, u, lame1, lame2, f): f = its internal force int P : grad v
-//     (no loads, no Dirichlet rows); returns the stored energy int W;
-//   ffcHyperTangent(C, u, lame1, lame2, K): K = the force's derivative (both
-//     triangles); returns its entries.
+// The scene's hyperelastic bulk (bulk = "neohookean", "svk" or
+// "mooneyrivlin"; ffc_hyper_assemble on [P1,P1,P1] or [P2,P2,P2]), at the
+// displacement u (3 dofs per node), with Lame's constants per tetrahedron
+// (P0 arrays) and, for Mooney-Rivlin, its c01 (named argument, P0 array):
+//   ffcHyperForce(C, u, lame1, lame2, f, c01 = c): f = its internal force
+//     int P : grad v (no loads, no Dirichlet rows); returns the stored energy int W;
+//   ffcHyperTangent(C, u, lame1, lame2, K, c01 = c): K = the force's
+//     derivative (both triangles); returns its entries.
 // The node graph is made once per scene.
 namespace {
 int hyper_law(const char *fn, SceneData &d)
@@ -139,7 +140,8 @@ int hyper_law(const char *fn, SceneData &d)
     ffc_scene_law(d.s, &l);
     if (l.kind == FFC_BULK_NEOHOOKEAN) return FFC_HYPER_NEOHOOKEAN;
     if (l.kind == FFC_BULK_SVK) return FFC_HYPER_SVK;
-    fail(fn, "argument 'C': the scene's bulk is not hyperelastic (made with bulk = \"neohookean\" or \"svk\")");
+    if (l.kind == FFC_BULK_MOONEYRIVLIN) return FFC_HYPER_MOONEYRIVLIN;
+    fail(fn, "argument 'C': the scene's bulk is not hyperelastic (made with bulk = \"neohookean\", \"svk\" or \"mooneyrivlin\")");
 }
 ffc_tets hyper_mesh(SceneData &d)
 {
@@ -177,27 +179,39 @@ void hyper_prepare(const char *fn, SceneData &d, KN<double> *u, KN<double> *l1, 
 [[noreturn]] void hyper_fail(const char *fn, const ffc_error &err)
 {
     const char *arg = err.status == FFC_ERR_INVERTED || err.where == FFC_AT_DOF ? "u"
-                      : err.status == FFC_ERR_NONFINITE && err.where == FFC_AT_ELEMENT ? "lame1, lame2" : "C";
+                      : err.status == FFC_ERR_VALUE && err.where == FFC_AT_ELEMENT    ? "c01"
+                      : err.status == FFC_ERR_NONFINITE && err.where == FFC_AT_ELEMENT ? "lame1, lame2, c01" : "C";
     fail(fn, std::string("argument '") + arg + "': " + err.msg);
 }
 
 // the operator at u (its law, the arguments checked, the node graph made
 // at the first call): W and f as ffc_hyper_assemble takes them, the
 // tangent into d.hKv when asked
-void hyper_assemble(const char *fn, SceneData &d, KN<double> *u, KN<double> *l1, KN<double> *l2, double *W, double f[],
-                    bool tangent)
+void hyper_assemble(const char *fn, const Named &nm, SceneData &d, KN<double> *u, KN<double> *l1, KN<double> *l2,
+                    double *W, double f[], bool tangent)
 {
     const int law = hyper_law(fn, d);
     hyper_prepare(fn, d, u, l1, l2);
+    KN<double> *c = nm.array(0);
+    if (law == FFC_HYPER_MOONEYRIVLIN && !c)
+        fail(fn, "argument 'c01': a Mooney-Rivlin bulk needs its c01 per tetrahedron (c01 = array)");
+    if (law != FFC_HYPER_MOONEYRIVLIN && nm.has(0)) fail(fn, "argument 'c01': only a Mooney-Rivlin bulk takes it");
+    if (c && c->N() != d.m.nt) {
+        std::ostringstream s;
+        s << "argument 'c01': size " << c->N() << ", expected " << d.m.nt << " (one value per tetrahedron: a P0 function's)";
+        fail(fn, s.str());
+    }
     const ffc_tets m = hyper_mesh(d);
     ffc_error err;
-    if (ffc_hyper_assemble(law, &m, &(*l1)[0], &(*l2)[0], &(*u)[0], d.hrp.data(), d.hadj.data(), W, f,
-                           tangent ? d.hKv.data() : nullptr, &err))
+    if (ffc_hyper_assemble(law, &m, &(*l1)[0], &(*l2)[0], c ? &(*c)[0] : nullptr, &(*u)[0], d.hrp.data(), d.hadj.data(), W,
+                           f, tangent ? d.hKv.data() : nullptr, &err))
         hyper_fail(fn, err);
 }
 } // namespace
 
-double sceneHyperForce(const Named &, FFScene *const &C, KN<double> *const &u, KN<double> *const &l1, KN<double> *const &l2,
+basicAC_F0::name_and_type hyper_names[] = {{"c01", &typeid(KN<double> *)}};
+
+double sceneHyperForce(const Named &nm, FFScene *const &C, KN<double> *const &u, KN<double> *const &l1, KN<double> *const &l2,
                        KN<double> *const &f)
 {
     const char *fn = "ffcHyperForce";
@@ -205,19 +219,19 @@ double sceneHyperForce(const Named &, FFScene *const &C, KN<double> *const &u, K
     if (!f) fail(fn, "argument 'f': array is not defined");
     std::vector<double> fv(3 * d.nn);
     double W = 0;
-    hyper_assemble(fn, d, u, l1, l2, &W, fv.data(), false);
+    hyper_assemble(fn, nm, d, u, l1, l2, &W, fv.data(), false);
     f->resize(3 * d.nn);
     for (long k = 0; k < 3 * d.nn; k++) (*f)[k] = fv[k];
     return W;
 }
 
-long sceneHyperTangent(const Named &, FFScene *const &C, KN<double> *const &u, KN<double> *const &l1, KN<double> *const &l2,
+long sceneHyperTangent(const Named &nm, FFScene *const &C, KN<double> *const &u, KN<double> *const &l1, KN<double> *const &l2,
                        Matrice_Creuse<double> *const &K)
 {
     const char *fn = "ffcHyperTangent";
     SceneData &d = need_scene(fn, C);
     if (!K) fail(fn, "argument 'K': matrix is not defined");
-    hyper_assemble(fn, d, u, l1, l2, nullptr, nullptr, true);
+    hyper_assemble(fn, nm, d, u, l1, l2, nullptr, nullptr, true);
     const long nz = (long)d.hKv.size();
     set_matrix(3 * d.nn, nz, d.hKi.data(), d.hKj.data(), d.hKv.data(), false, K);
     return nz;

@@ -43,8 +43,8 @@ void init_scene()
     typedef Matrice_Creuse<double> *M;
     Global.Add("ffcBulk", "(", named<long, S, M>("ffcBulk", bulk_names, 1, sceneBulk));
     Global.Add("ffcElastic", "(", named<long, S, M, V, V>("ffcElastic", nullptr, 0, sceneElastic));
-    Global.Add("ffcHyperForce", "(", named<double, S, V, V, V, V>("ffcHyperForce", nullptr, 0, sceneHyperForce));
-    Global.Add("ffcHyperTangent", "(", named<long, S, V, V, V, M>("ffcHyperTangent", nullptr, 0, sceneHyperTangent));
+    Global.Add("ffcHyperForce", "(", named<double, S, V, V, V, V>("ffcHyperForce", hyper_names, 1, sceneHyperForce));
+    Global.Add("ffcHyperTangent", "(", named<long, S, V, V, V, M>("ffcHyperTangent", hyper_names, 1, sceneHyperTangent));
     Global.Add("ffcSolve", "(", named<long, S, M, V, V>("ffcSolve", nullptr, 0, sceneSolve));
     Global.Add("ffcFullSolve", "(", named<long, S, M, V, V>("ffcFullSolve", full_names, 2, sceneFullSolve));
     Global.Add("ffcNTSSolve", "(", named<long, S, V, V, V, V, V>("ffcNTSSolve", nullptr, 0, sceneNTSSolve));

@@ -109,15 +109,19 @@ typedef struct {
  * at F = I is linear elasticity of the same constants). */
 enum {
     FFC_HYPER_NEOHOOKEAN = 1, /* W = mu/2 (F:F - 3) - mu ln J + lambda/2 (ln J)^2 (J = det F > 0) */
-    FFC_HYPER_SVK = 2         /* Saint Venant-Kirchhoff: W = lambda/2 (tr E)^2 + mu E:E, E = (F^T F - I)/2 */
+    FFC_HYPER_SVK = 2,        /* Saint Venant-Kirchhoff: W = lambda/2 (tr E)^2 + mu E:E, E = (F^T F - I)/2 */
+    FFC_HYPER_MOONEYRIVLIN = 3 /* W = c10 (I1 - 3) + c01 (I2 - 3) - 2 (c10 + 2 c01) ln J + lambda'/2 (ln J)^2,
+                                  c10 = mu/2 - c01, lambda' = lambda - 4 c01, 0 <= c01 <= mu/2 (J > 0) */
 };
 
 /* The pointwise law at the deformation gradient F[9] (row-major, F_iJ at
  * 3 i + J): the energy density *W, the first Piola-Kirchhoff stress P[9]
  * and, unless A is NULL, its derivative A[81] = dP_iJ / dF_kL at 27 i + 9
- * J + 3 k + L.  FFC_ERR_INVERTED for the Neo-Hookean law at det F <= 0,
- * FFC_ERR_VALUE for an unknown law. */
-int ffc_hyper_point(int law, double lam, double mu, const double F[9], double *W, double P[9], double A[81]);
+ * J + 3 k + L; c01 is the Mooney-Rivlin law's second constant (the other
+ * laws ignore it).  FFC_ERR_INVERTED for the Neo-Hookean and Mooney-Rivlin
+ * laws at det F <= 0, FFC_ERR_VALUE for an unknown law or c01 outside
+ * [0, mu / 2]. */
+int ffc_hyper_point(int law, double lam, double mu, double c01, const double F[9], double *W, double P[9], double A[81]);
 
 /* The node graph of the mesh's nodes: row i lists node i and the nodes
  * that share a tetrahedron with it, ascending, in adj[rp[i] .. rp[i + 1])
@@ -133,15 +137,17 @@ void ffc_tets_pattern_ij(long nn, const long rp[], const long adj[], long Ki[], 
  * Lagrangian on the reference mesh m: the stored energy *W, the internal
  * force f[3 nn] (int P : grad v) and its tangent Kv[9 rp[nn]] on the
  * pattern (rp, adj) of ffc_tets_pattern; any of W, f, Kv may be NULL
- * (not computed).  Lame's constants lam[nt], mu[nt] per tetrahedron.
+ * (not computed).  Lame's constants lam[nt], mu[nt] per tetrahedron (the
+ * linearization's), and the Mooney-Rivlin law's c01[nt] (NULL for the others).
  * Quadrature: one point on P1 (F is constant), FreeFEM's qfV5 (14 points,
  * degree 5) on P2.  Errors (err: the tetrahedron, dof or node):
- * FFC_ERR_INVERTED (det F <= 0 at a point of the Neo-Hookean law),
+ * FFC_ERR_INVERTED (det F <= 0 at a point of the Neo-Hookean or Mooney-Rivlin law),
  * FFC_ERR_DEGENERATE (a tetrahedron of no volume), FFC_ERR_NONFINITE,
  * FFC_ERR_INDEX (a node outside the mesh or the pattern), FFC_ERR_VALUE
- * (an unknown law). */
-int ffc_hyper_assemble(int law, const ffc_tets *m, const double lam[], const double mu[], const double u[],
-                       const long rp[], const long adj[], double *W, double f[], double Kv[], ffc_error *err);
+ * (an unknown law, a c01 outside [0, mu / 2]). */
+int ffc_hyper_assemble(int law, const ffc_tets *m, const double lam[], const double mu[], const double c01[],
+                       const double u[], const long rp[], const long adj[], double *W, double f[], double Kv[],
+                       ffc_error *err);
 
 /* ------------------------------------------------ mass redistribution */
 /* The interpolation T (n x n) of a redistributed mass M_red = T' M T for

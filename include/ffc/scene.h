@@ -93,7 +93,8 @@ typedef enum {
     FFC_BULK_LINEAR = 0,      /* linear elasticity (small strain) */
     FFC_BULK_NEOHOOKEAN = 1,  /* compressible Neo-Hookean (finite deformation, total Lagrangian) */
     FFC_BULK_USER = 2,        /* the scene's own residual and tangent */
-    FFC_BULK_SVK = 3          /* Saint Venant-Kirchhoff (finite deformation, total Lagrangian) */
+    FFC_BULK_SVK = 3,         /* Saint Venant-Kirchhoff (finite deformation, total Lagrangian) */
+    FFC_BULK_MOONEYRIVLIN = 4 /* compressible Mooney-Rivlin (finite deformation, total Lagrangian) */
 } ffc_bulk_kind;
 typedef struct {
     ffc_bulk_kind kind;
