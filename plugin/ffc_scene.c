@@ -47,8 +47,9 @@ int ffc_pair_opts_check(const ffc_pair_opts *o)
     if (!finite_nonneg(o->mu) || !finite_nonneg(o->eps_t)) return FFC_ERR_VALUE;
     if (!finite_nonneg(o->eps_n)) return FFC_ERR_VALUE; /* 0: not set yet */
     if (!finite_nonneg(o->search.capture_rel) || !finite_nonneg(o->search.capture_abs) ||
-        !finite_nonneg(o->search.edge_tol))
+        !finite_nonneg(o->search.edge_tol) || (o->search.self != 0 && o->search.self != 1))
         return FFC_ERR_VALUE;
+    if (o->search.self && o->method != FFC_METHOD_AL) return FFC_ERR_VALUE; /* (ffc_search's exclusions) */
     return FFC_OK;
 }
 
@@ -337,7 +338,10 @@ int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const 
     if (st) return st;
     if ((st = check_nodes(nfs * s->nper, Fs, s->nv, bad))) return st;
     if ((st = check_nodes(nfm * s->nper, Fm, s->nv, bad))) return st;
-    if ((st = check_fused(s->nper, nfs, Fs, nfm, Fm, s->nv, bad))) return st;
+    if (o->search.self) { /* self-contact: one surface on both sides */
+        if (nfs != nfm || memcmp(Fs, Fm, (size_t)(nfs * s->nper) * sizeof *Fs)) return FFC_ERR_VALUE;
+    } else if ((st = check_fused(s->nper, nfs, Fs, nfm, Fm, s->nv, bad)))
+        return st;
     if ((st = check_interior(s, nfs, Fs, nfm, Fm, bad))) return st;
     if ((o->method == FFC_METHOD_NTS || o->dual_t) && s->nper != 3) return FFC_ERR_NODES;
     if (s->np > 0 && s->p[0].o.method != o->method) return FFC_ERR_VALUE; /* one method per scene */

@@ -93,6 +93,9 @@ typedef struct {
     double rmax2;    /* squared search radius (length^2) */
     double dmin;     /* smallest squared distance met (length^2; INFINITY: none yet) */
     double lim2;     /* squared pruning radius: dmin plus the tie tolerance, at most rmax2 */
+    const double *ex; /* self-contact (not reset by cand_init): the querying point's facet's
+                         corners [9] (NULL: no exclusion) and its unit normal exn[3] */
+    double exn[3];
     int n;           /* facets in the window */
     struct { long f, slot; double d2; int inside; } w[TIES]; /* the window */
 } cand_t;
@@ -154,10 +157,27 @@ static void cand_pick(cand_t *c)
         }
 }
 
+/* Self-contact: facet slot s is no partner of the querying point when it
+ * shares a corner with the point's facet (the same node: the same
+ * coordinates, as both come from one array) or its normal does not
+ * oppose the point's facet's (n . n_s >= 0: the surface merely curves). */
+static int excluded(const ffc_tree *t, long s, const cand_t *best)
+{
+    const double *X = t->fx + s * t->nn * 3, *E = best->ex;
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+            if (X[3 * a] == E[3 * b] && X[3 * a + 1] == E[3 * b + 1] && X[3 * a + 2] == E[3 * b + 2]) return 1;
+    double e1[3], e2[3];
+    for (int i = 0; i < 3; i++) { e1[i] = X[3 + i] - X[i]; e2[i] = X[6 + i] - X[i]; }
+    const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    return !(n[0] * best->exn[0] + n[1] * best->exn[1] + n[2] * best->exn[2] < 0);
+}
+
 static void consider(const ffc_tree *t, long s, const double p[3], cand_t *best)
 {
     double d2;
     int inside;
+    if (best->ex && excluded(t, s, best)) return;
     const double *X = t->fx + s * t->nn * 3;
     if (t->nn == 3) {
         if (t->degen[s]) return;
@@ -391,6 +411,7 @@ int ffc_tree_nearest(const ffc_tree *t, const double p[3], double rmax,
     for (int i = 0; i < 3; i++)
         if (!isfinite(p[i])) return FFC_ERR_NONFINITE;
     cand_t best;
+    best.ex = NULL;
     nearest(t, p, rmax, -1, &best);
     *facet = best.f;
     if (best.f >= 0) {
@@ -402,7 +423,7 @@ int ffc_tree_nearest(const ffc_tree *t, const double p[3], double rmax,
 
 ffc_search_opts ffc_search_defaults(void)
 {
-    ffc_search_opts o = {2.0, 0.0, 1e-9};
+    ffc_search_opts o = {2.0, 0.0, 1e-9, 0};
     return o;
 }
 
@@ -450,7 +471,8 @@ static void make_link(const ffc_tree *t, const cand_t *c, const double p[3],
  * when *r0 > 0 (see collect); *warm and *r0 carried to the next batch.
  * Returns how many have a partner. */
 static long query_batch(const ffc_tree *t, batch_t *B, long nb, const double bp[][3], const long bl[],
-                        double rmax, const ffc_search_opts *o, ffc_link links[], long *warm, double *r0)
+                        const double (*bx)[12], double rmax, const ffc_search_opts *o, ffc_link links[], long *warm,
+                        double *r0)
 {
     int shared = 0;
     if (*r0 > 0.0 && B) {
@@ -470,6 +492,8 @@ static long query_batch(const ffc_tree *t, batch_t *B, long nb, const double bp[
     double rnext = 0.0;
     for (long k = 0; k < nb; k++) {
         cand_t best;
+        best.ex = bx ? bx[k] : NULL;
+        if (bx) memcpy(best.exn, bx[k] + 9, sizeof best.exn);
         if (!shared || !nearest_in(t, B, *r0, bp[k], rmax, *warm, &best)) nearest(t, bp[k], rmax, *warm, &best);
         if (best.f >= 0) {
             *warm = best.f;
@@ -506,6 +530,7 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
     long found = 0, warm = -1, nb = 0;
     double bp[BATCH][3]; /* the batch's points, */
     long bl[BATCH];      /* and their links */
+    double bx[BATCH][12]; /* self-contact: each point's facet's corners and unit normal */
     double r0 = 0.0;     /* the batch radius (0: none yet) */
     batch_t *B = brute ? NULL : malloc(sizeof *B); /* (without it, one traversal per point) */
     for (long f = 0; f < nfs; f++) {
@@ -515,6 +540,17 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
                 X[a][i] = xs[3 * Fs[f * nns + a] + i];
                 if (!isfinite(X[a][i])) { free(B); return FFC_ERR_NONFINITE; }
             }
+        double ex[12];   /* self-contact: the corners and the unit normal of facet f */
+        if (o->self) {
+            double e1[3], e2[3];
+            for (int i = 0; i < 3; i++) {
+                ex[i] = X[0][i]; ex[3 + i] = X[1][i]; ex[6 + i] = X[2][i];
+                e1[i] = X[1][i] - X[0][i]; e2[i] = X[2][i] - X[0][i];
+            }
+            const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+            const double nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            for (int i = 0; i < 3; i++) ex[9 + i] = nn > 0 ? n[i] / nn : 0.0;
+        }
         for (int q = 0; q < nq; q++) {
             double N[FFC_MAXNODES], p[3] = {0, 0, 0};
             ffc_shape(nns, qxi[q], N, NULL);
@@ -528,6 +564,8 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
             if (brute) {
                 cand_t best;
                 cand_init(&best, rmax);
+                best.ex = o->self ? ex : NULL;
+                if (o->self) memcpy(best.exn, ex + 9, sizeof best.exn);
                 /* every facet, no pruning */
                 for (long s = 0; s < t->nf; s++) consider(t, s, p, &best);
                 cand_pick(&best);
@@ -536,9 +574,11 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
                 continue;
             }
             memcpy(bp[nb], p, sizeof p);
+            if (o->self) memcpy(bx[nb], ex, sizeof ex);
             bl[nb++] = f * nq + q;
             if (nb < BATCH && !(f == nfs - 1 && q == nq - 1)) continue;
-            found += query_batch(t, B, nb, (const double(*)[3])bp, bl, rmax, o, links, &warm, &r0);
+            found += query_batch(t, B, nb, (const double(*)[3])bp, bl, o->self ? (const double(*)[12])bx : NULL, rmax, o,
+                                 links, &warm, &r0);
             nb = 0;
         }
     }
@@ -572,7 +612,7 @@ int ffc_search_points(const ffc_tree *t, long np, const double p[],
             lk->xs[0] = lk->xs[1] = 0.0;
             bl[k] = k0 + k;
         }
-        found += query_batch(t, B, nb, (const double(*)[3])(p + 3 * k0), bl, rmax, o, links, &warm, &r0);
+        found += query_batch(t, B, nb, (const double(*)[3])(p + 3 * k0), bl, NULL, rmax, o, links, &warm, &r0);
     }
     free(B);
     return found <= 2147483647L ? (int)found : FFC_ERR_SIZE;

@@ -10,6 +10,7 @@
 #include <array>
 #include <chrono>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <utility>

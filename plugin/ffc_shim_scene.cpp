@@ -12,17 +12,23 @@ namespace ffc_shim {
 namespace {
 
 // Slave and master label lists: non-empty, disjoint.
-void need_pair_labels(const char *fn, KN<long> *sl, KN<long> *ml)
+// the two sides' labels: apart (false), or the same set (true: self-contact)
+bool need_pair_labels(const char *fn, KN<long> *sl, KN<long> *ml)
 {
     if (!sl || sl->N() == 0) fail(fn, "argument 'slaveLabs': empty list of labels");
     if (!ml || ml->N() == 0) fail(fn, "argument 'masterLabs': empty list of labels");
-    for (long i = 0; i < sl->N(); i++)
-        for (long j = 0; j < ml->N(); j++)
-            if ((*sl)[i] == (*ml)[j]) {
-                std::ostringstream s;
-                s << "label " << (*sl)[i] << " is in both 'slaveLabs' and 'masterLabs'";
-                fail(fn, s.str());
-            }
+    std::set<long> S, M;
+    for (long i = 0; i < sl->N(); i++) S.insert((*sl)[i]);
+    for (long j = 0; j < ml->N(); j++) M.insert((*ml)[j]);
+    if (S == M) return true;
+    for (long l : S)
+        if (M.count(l)) {
+            std::ostringstream s;
+            s << "label " << l << " is in both 'slaveLabs' and 'masterLabs' (self-contact takes the same labels on both "
+                 "sides; else each label on one side)";
+            fail(fn, s.str());
+        }
+    return false;
 }
 
 ffc_effects need_effects(const char *fn, long bits, const char *arg = "argument 'opt': effects = opt[1]")
@@ -372,8 +378,12 @@ long addPair(const Named &nm, FFScene *const &C, KN<long> *const &sl, KN<long> *
     const char *fn = "ffcAddPair";
     SceneData &d = need_scene(fn, C);
     KN<long> S = side_labels(fn, "slaveLabs", sl), M = side_labels(fn, "masterLabs", ml);
-    need_pair_labels(fn, &S, &M);
+    const bool self = need_pair_labels(fn, &S, &M);
     ffc_pair_opts o = named_pair_opts(fn, nm, d, ffc_pair_defaults());
+    if (self && o.method != FFC_METHOD_AL)
+        fail(fn, std::string("argument 'method': \"") + method_name(o.method) + "\": self-contact (the same labels " +
+                     labels_text(S) + " on both sides) takes method \"al\"");
+    o.search.self = self;
     // the facets, from the mesh as the scene was made
     auto select = [&](const char *arg, const KN<long> &labs, std::vector<long> &F, std::vector<long> &tet) {
         std::vector<long> L(labs.N()), out(3 * d.m.nbe);

@@ -560,7 +560,7 @@ static void test_edge_keep(void **state)
     assert_int_equal(nd[0].state, FFC_NTS_SLIDE);
     assert_int_equal(nd[0].mf, 0);
     u6[0] = 1e-11;             /* past the edge: B's interior at distance 1e-12, A's edge at 1e-11 */
-    ffc_search_opts o = {1.0, 0.0, 0.0};   /* (edge_tol 0: the search itself keeps nothing) */
+    ffc_search_opts o = {1.0, 0.0, 0.0, 0};   /* (edge_tol 0: the search itself keeps nothing) */
     assert_int_equal(ffc_nts_locate(&v.p, &v.law, &o, 0, 3, nd), FFC_OK);
     assert_int_equal(nd[0].mf, 0);
     assert_int_equal(nd[0].mfprev, -1);

@@ -594,6 +594,94 @@ static void test_extreme_units(void **state)
     }
 }
 
+/* Self-contact (o.self = 1): the slave facets are the master surface's
+ * own.  A strip folded into a hairpin (two flat sheets a gap g apart,
+ * joined by a half circle of radius g / 2, normals into the gap): points
+ * on the lower sheet away from the fold link to the upper sheet, at gap g
+ * with normal -z; no point links to its own facet, to one sharing a
+ * vertex with it, or to one whose normal does not oppose its facet's; the
+ * tree and the unpruned loop agree.  A quarter cylinder, merely curved:
+ * no link at all with o.self = 1 (without it every point links to its own
+ * facet at gap 0). */
+static void map_hairpin(surf_t *s, double g)
+{
+    const double r = 0.5 * g, arc = 3.14159265358979323846 * r;
+    for (long i = 0; i < s->nv; i++) {
+        double *x = s->x + 3 * i, t = x[0];
+        if (t <= 1.0) { x[0] = t; x[2] = 0.0; }
+        else if (t < 1.0 + arc) { const double a = (t - 1.0) / r; x[0] = 1.0 + r * sin(a); x[2] = r - r * cos(a); }
+        else { x[0] = 1.0 - (t - 1.0 - arc); x[2] = g; }
+    }
+}
+static void map_quarter(surf_t *s, double R)
+{
+    for (long i = 0; i < s->nv; i++) {
+        double *x = s->x + 3 * i, a = x[0] / R;   /* arc length along x, then the cylinder about y */
+        x[0] = R * sin(a);
+        x[2] = R - R * cos(a);
+    }
+}
+static void facet_normal(const surf_t *s, long f, double n[3])
+{
+    const double *a = s->x + 3 * s->F[f * s->nn], *b = s->x + 3 * s->F[f * s->nn + 1], *c = s->x + 3 * s->F[f * s->nn + 2];
+    double e1[3], e2[3];
+    for (int i = 0; i < 3; i++) { e1[i] = b[i] - a[i]; e2[i] = c[i] - a[i]; }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1]; n[1] = e1[2] * e2[0] - e1[0] * e2[2]; n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+}
+static void test_self(void **state)
+{
+    (void)state;
+    const double g = 0.05, arc = 3.14159265358979323846 * 0.5 * g, len = 2.0 + arc;
+    surf_t h = make_grid(3, 42, 6, 0.0, 0.0, len, 0.3, z_flat, 0.0, 1, 1);
+    map_hairpin(&h, g);
+    ffc_tree *t;
+    assert_int_equal(ffc_tree_build(3, h.nf, h.F, h.nv, h.x, &t), FFC_OK);
+    ffc_search_opts o = ffc_search_defaults();
+    o.self = 1;
+    const int qdeg = 2, nq = ffc_quad_size(qdeg);
+    const long nl = h.nf * nq;
+    ffc_link *L = malloc(nl * sizeof *L), *B = malloc(nl * sizeof *B);
+    const int found = ffc_search(t, 3, h.nf, h.F, h.nv, h.x, qdeg, &o, nl, L);
+    assert_int_equal(ffc_search_brute(t, 3, h.nf, h.F, h.nv, h.x, qdeg, &o, nl, B), found);
+    long lower = 0;
+    for (long k = 0; k < nl; k++) {
+        assert_int_equal(L[k].mf, B[k].mf);
+        double p[3];
+        slave_point(&h, &L[k], p);
+        if (p[2] == 0.0 && p[0] < 0.9) {   /* the lower sheet away from the fold */
+            assert_true(L[k].mf >= 0);
+            assert_close(L[k].gap, g, 1e-12);
+            assert_close(L[k].n[2], -1.0, 1e-12);
+            lower++;
+        }
+        if (L[k].mf < 0) continue;
+        const long sf = L[k].sf, mf = L[k].mf;
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) assert_true(h.F[3 * sf + a] != h.F[3 * mf + b]);
+        double ns[3], nm[3];
+        facet_normal(&h, sf, ns);
+        facet_normal(&h, mf, nm);
+        assert_true(ns[0] * nm[0] + ns[1] * nm[1] + ns[2] * nm[2] < 0);
+    }
+    assert_true(lower >= 20 * 6 * 2 * nq * 9 / 10);   /* (18 of the 20 cells along x, every point in them) */
+    free(L); free(B);
+    ffc_tree_free(t);
+    /* merely curved: no partner anywhere */
+    surf_t c = make_grid(3, 16, 4, 0.0, 0.0, 0.5 * 3.14159265358979323846 * 0.2, 0.2, z_flat, 0.2, 1, 2);
+    map_quarter(&c, 0.2);
+    assert_int_equal(ffc_tree_build(3, c.nf, c.F, c.nv, c.x, &t), FFC_OK);
+    const long ncl = c.nf * nq;
+    L = malloc(ncl * sizeof *L);
+    assert_int_equal(ffc_search(t, 3, c.nf, c.F, c.nv, c.x, qdeg, &o, ncl, L), 0);
+    o.self = 0;
+    assert_int_equal(ffc_search(t, 3, c.nf, c.F, c.nv, c.x, qdeg, &o, ncl, L), ncl);
+    for (long k = 0; k < ncl; k++) assert_close(L[k].gap, 0.0, 1e-12);
+    free(L);
+    ffc_tree_free(t);
+    surf_free(&h);
+    surf_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -607,6 +695,7 @@ int main(void)
         cmocka_unit_test(test_tie_order),
         cmocka_unit_test(test_degenerate_facet),
         cmocka_unit_test(test_extreme_units),
+        cmocka_unit_test(test_self),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
