@@ -94,8 +94,9 @@ typedef struct {
     double dmin;     /* smallest squared distance met (length^2; INFINITY: none yet) */
     double lim2;     /* squared pruning radius: dmin plus the tie tolerance, at most rmax2 */
     const double *ex; /* self-contact (not reset by cand_init): the querying point's facet's
-                         corners [9] (NULL: no exclusion) and its unit normal exn[3] */
+                         corners [9] (NULL: no exclusion), its unit normal exn[3] and index exf */
     double exn[3];
+    long exf;
     int n;           /* facets in the window */
     struct { long f, slot; double d2; int inside; } w[TIES]; /* the window */
 } cand_t;
@@ -157,12 +158,17 @@ static void cand_pick(cand_t *c)
         }
 }
 
-/* Self-contact: facet slot s is no partner of the querying point when it
- * shares a corner with the point's facet (the same node: the same
- * coordinates, as both come from one array) or its normal does not
- * oppose the point's facet's (n . n_s >= 0: the surface merely curves). */
+/* Self-contact: facet slot s is no partner of the querying point when its
+ * index is not above the point's facet's (each two facing facets are
+ * linked once, from the one of lower index: one pass, as a pair of two
+ * surfaces; two passes over-constrain the fold and their multipliers
+ * never settle), when it shares a corner with the point's facet (the
+ * same node: the same coordinates, as both come from one array), or when
+ * its normal does not oppose the point's facet's (n . n_s >= 0: the
+ * surface merely curves there). */
 static int excluded(const ffc_tree *t, long s, const cand_t *best)
 {
+    if (t->slot2f[s] <= best->exf) return 1;
     const double *X = t->fx + s * t->nn * 3, *E = best->ex;
     for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++)
@@ -471,7 +477,7 @@ static void make_link(const ffc_tree *t, const cand_t *c, const double p[3],
  * when *r0 > 0 (see collect); *warm and *r0 carried to the next batch.
  * Returns how many have a partner. */
 static long query_batch(const ffc_tree *t, batch_t *B, long nb, const double bp[][3], const long bl[],
-                        const double (*bx)[12], double rmax, const ffc_search_opts *o, ffc_link links[], long *warm,
+                        const double (*bx)[13], double rmax, const ffc_search_opts *o, ffc_link links[], long *warm,
                         double *r0)
 {
     int shared = 0;
@@ -493,7 +499,7 @@ static long query_batch(const ffc_tree *t, batch_t *B, long nb, const double bp[
     for (long k = 0; k < nb; k++) {
         cand_t best;
         best.ex = bx ? bx[k] : NULL;
-        if (bx) memcpy(best.exn, bx[k] + 9, sizeof best.exn);
+        if (bx) { memcpy(best.exn, bx[k] + 9, sizeof best.exn); best.exf = (long)bx[k][12]; }
         if (!shared || !nearest_in(t, B, *r0, bp[k], rmax, *warm, &best)) nearest(t, bp[k], rmax, *warm, &best);
         if (best.f >= 0) {
             *warm = best.f;
@@ -530,7 +536,7 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
     long found = 0, warm = -1, nb = 0;
     double bp[BATCH][3]; /* the batch's points, */
     long bl[BATCH];      /* and their links */
-    double bx[BATCH][12]; /* self-contact: each point's facet's corners and unit normal */
+    double bx[BATCH][13]; /* self-contact: each point's facet's corners, unit normal and index */
     double r0 = 0.0;     /* the batch radius (0: none yet) */
     batch_t *B = brute ? NULL : malloc(sizeof *B); /* (without it, one traversal per point) */
     for (long f = 0; f < nfs; f++) {
@@ -540,7 +546,7 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
                 X[a][i] = xs[3 * Fs[f * nns + a] + i];
                 if (!isfinite(X[a][i])) { free(B); return FFC_ERR_NONFINITE; }
             }
-        double ex[12];   /* self-contact: the corners and the unit normal of facet f */
+        double ex[13];   /* self-contact: the corners, the unit normal and the index of facet f */
         if (o->self) {
             double e1[3], e2[3];
             for (int i = 0; i < 3; i++) {
@@ -550,6 +556,7 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
             const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
             const double nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
             for (int i = 0; i < 3; i++) ex[9 + i] = nn > 0 ? n[i] / nn : 0.0;
+            ex[12] = (double)f;
         }
         for (int q = 0; q < nq; q++) {
             double N[FFC_MAXNODES], p[3] = {0, 0, 0};
@@ -565,7 +572,7 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
                 cand_t best;
                 cand_init(&best, rmax);
                 best.ex = o->self ? ex : NULL;
-                if (o->self) memcpy(best.exn, ex + 9, sizeof best.exn);
+                if (o->self) { memcpy(best.exn, ex + 9, sizeof best.exn); best.exf = f; }
                 /* every facet, no pruning */
                 for (long s = 0; s < t->nf; s++) consider(t, s, p, &best);
                 cand_pick(&best);
@@ -577,7 +584,7 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
             if (o->self) memcpy(bx[nb], ex, sizeof ex);
             bl[nb++] = f * nq + q;
             if (nb < BATCH && !(f == nfs - 1 && q == nq - 1)) continue;
-            found += query_batch(t, B, nb, (const double(*)[3])bp, bl, o->self ? (const double(*)[12])bx : NULL, rmax, o,
+            found += query_batch(t, B, nb, (const double(*)[3])bp, bl, o->self ? (const double(*)[13])bx : NULL, rmax, o,
                                  links, &warm, &r0);
             nb = 0;
         }

@@ -30,12 +30,13 @@ typedef struct {
                             surface is <= max(capture_abs, capture_rel h_f) */
     double edge_tol;     /* a foot outside its facet by at most this much in
                             local coordinates still counts as inside (1); >= 0 */
-    int self;            /* 1: self-contact, the slave facets lie on the master
-                            surface (ffc_search): a point never links to its
-                            own facet, to a facet that shares a vertex with
-                            it, or to a facet whose normal does not oppose
-                            its own facet's (n_m . n_s >= 0: a surface that is
-                            merely curved there); 0: the surfaces are apart */
+    int self;            /* 1: self-contact, the slave facets are the master
+                            facets, in the same order (ffc_search): a point
+                            links only to a facet of higher index (each two
+                            facing facets once: one pass), that shares no
+                            vertex with its own facet and whose normal
+                            opposes its facet's (n_m . n_s < 0; not where
+                            the surface merely curves); 0: surfaces apart */
 } ffc_search_opts;
 
 /* Defaults: capture_rel 2, capture_abs 0, edge_tol 1e-9, self 0. */

@@ -596,10 +596,12 @@ static void test_extreme_units(void **state)
 
 /* Self-contact (o.self = 1): the slave facets are the master surface's
  * own.  A strip folded into a hairpin (two flat sheets a gap g apart,
- * joined by a half circle of radius g / 2, normals into the gap): points
+ * joined by a half circle of radius g / 2, normals into the gap; the
+ * lower sheet's facets numbered before the upper's in each row): points
  * on the lower sheet away from the fold link to the upper sheet, at gap g
  * with normal -z; no point links to its own facet, to one sharing a
- * vertex with it, or to one whose normal does not oppose its facet's; the
+ * vertex with it, to one whose normal does not oppose its facet's, or to
+ * one of lower index (one pass: no two facets linked both ways); the
  * tree and the unpruned loop agree.  A quarter cylinder, merely curved:
  * no link at all with o.self = 1 (without it every point links to its own
  * facet at gap 0). */
@@ -664,6 +666,13 @@ static void test_self(void **state)
         assert_true(ns[0] * nm[0] + ns[1] * nm[1] + ns[2] * nm[2] < 0);
     }
     assert_true(lower >= 20 * 6 * 2 * nq * 9 / 10);   /* (18 of the 20 cells along x, every point in them) */
+    /* one pass: a link goes from the facet of lower index to the other,
+     * never back */
+    for (long k = 0; k < nl; k++) {
+        if (L[k].mf < 0) continue;
+        assert_true(L[k].mf > L[k].sf);
+        for (long j = 0; j < nl; j++) assert_false(L[j].sf == L[k].mf && L[j].mf == L[k].sf);
+    }
     free(L); free(B);
     ffc_tree_free(t);
     /* merely curved: no partner anywhere */
