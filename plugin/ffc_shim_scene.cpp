@@ -409,7 +409,28 @@ long addPair(const Named &nm, FFScene *const &C, KN<long> *const &sl, KN<long> *
         return (long)st;
     };
     std::vector<long> Fs, Fm, tS, tM;
-    const long nfs = select("slaveLabs", S, Fs, tS), nfm = select("masterLabs", M, Fm, tM);
+    long nfs, nfm;
+    if (self) { // self-contact: the facets label by label in the order given (the search links two facing
+                // facets from the one listed first), the same list on both sides
+        nfs = 0;
+        for (long i = 0; i < S.N(); i++) {
+            KN<long> one(1);
+            one[0] = S[i];
+            bool seen = false;
+            for (long j = 0; j < i; j++) seen |= S[j] == S[i];
+            if (seen) continue;
+            std::vector<long> F1, t1;
+            nfs += select("slaveLabs", one, F1, t1);
+            Fs.insert(Fs.end(), F1.begin(), F1.end());
+            tS.insert(tS.end(), t1.begin(), t1.end());
+        }
+        Fm = Fs;
+        tM = tS;
+        nfm = nfs;
+    } else {
+        nfs = select("slaveLabs", S, Fs, tS);
+        nfm = select("masterLabs", M, Fm, tM);
+    }
     long bad = -1;
     const int k = ffc_scene_add_pair(d.s, nfs, Fs.data(), nfm, Fm.data(), &o, &bad);
     if (k == FFC_ERR_FUSED) {
