@@ -519,6 +519,7 @@ double pairOption(const Named &, FFScene *const &C, long const &k, string *const
     if (n == "cabs") return o.search.capture_abs;
     if (n == "nts") return o.method == FFC_METHOD_NTS;
     if (n == "mortar") return o.method == FFC_METHOD_MORTAR;
+    if (n == "self") return o.search.self;
     if (n == "dual") return o.dual;
     if (n == "dualT") return o.dual_t;
     if (n == "muD") return o.mu_d;
@@ -529,8 +530,8 @@ double pairOption(const Named &, FFScene *const &C, long const &k, string *const
     if (n == "method")
         fail(fn, "argument 'name': \"method\" is a string and ffcOption returns numbers: read it as ffcOption(C, k, \"nts\") "
                  "(1: node-to-surface) and ffcOption(C, k, \"mortar\") (1: mortar), both 0 for the augmented Lagrangian");
-    fail(fn, "argument 'name': \"" + n + "\" is not an option of a pair (mu, epsN, epsT, qdeg, nodal, crel, cabs, nts, mortar, dual, dualT, muD, gtol, ftol, "
-                "maxFlips, scale)");
+    fail(fn, "argument 'name': \"" + n + "\" is not an option of a pair (mu, epsN, epsT, qdeg, nodal, crel, cabs, nts, mortar, self, dual, dualT, muD, gtol, "
+                "ftol, maxFlips, scale)");
 }
 
 long nPairs(const Named &, FFScene *const &C) { return ffc_scene_npairs(need_scene("ffcPairs", C).s); }
