@@ -86,6 +86,12 @@ done:
  * smallest facets by (distance, index) (more facets tied to round-off at
  * one point than that: the TIES closest compete). */
 enum { TIES = 16 };
+/* Self-contact: the querying point's facet */
+typedef struct {
+    double X[9];     /* its corners (length) */
+    double n[3];     /* its unit normal (1) */
+    long f;          /* its index in the facet list */
+} self_ex;
 typedef struct {
     long f, slot;    /* the answer (after cand_pick): facet and its tree slot, f = -1 for none */
     double d2;       /* its squared distance (length^2) */
@@ -93,10 +99,7 @@ typedef struct {
     double rmax2;    /* squared search radius (length^2) */
     double dmin;     /* smallest squared distance met (length^2; INFINITY: none yet) */
     double lim2;     /* squared pruning radius: dmin plus the tie tolerance, at most rmax2 */
-    const double *ex; /* self-contact (not reset by cand_init): the querying point's facet's
-                         corners [9] (NULL: no exclusion), its unit normal exn[3] and index exf */
-    double exn[3];
-    long exf;
+    const self_ex *ex; /* self-contact: the querying point's facet (NULL: no exclusion; not reset by cand_init) */
     int n;           /* facets in the window */
     struct { long f, slot; double d2; int inside; } w[TIES]; /* the window */
 } cand_t;
@@ -166,24 +169,29 @@ static void cand_pick(cand_t *c)
  * same node: the same coordinates, as both come from one array), or when
  * its normal does not oppose the point's facet's (n . n_s >= 0: the
  * surface merely curves there). */
-static int excluded(const ffc_tree *t, long s, const cand_t *best)
+static void corner_normal(const double X[9], double n[3])
 {
-    if (t->slot2f[s] <= best->exf) return 1;
-    const double *X = t->fx + s * t->nn * 3, *E = best->ex;
+    double e1[3], e2[3];
+    for (int i = 0; i < 3; i++) { e1[i] = X[3 + i] - X[i]; e2[i] = X[6 + i] - X[i]; }
+    ffc__cross(e1, e2, n);
+}
+static int excluded(const ffc_tree *t, long s, const self_ex *ex)
+{
+    if (t->slot2f[s] <= ex->f) return 1;
+    const double *X = t->fx + s * t->nn * 3, *E = ex->X;
     for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++)
             if (X[3 * a] == E[3 * b] && X[3 * a + 1] == E[3 * b + 1] && X[3 * a + 2] == E[3 * b + 2]) return 1;
-    double e1[3], e2[3];
-    for (int i = 0; i < 3; i++) { e1[i] = X[3 + i] - X[i]; e2[i] = X[6 + i] - X[i]; }
-    const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-    return !(n[0] * best->exn[0] + n[1] * best->exn[1] + n[2] * best->exn[2] < 0);
+    double n[3];
+    corner_normal(X, n);
+    return !(ffc__dot(n, ex->n) < 0);
 }
 
 static void consider(const ffc_tree *t, long s, const double p[3], cand_t *best)
 {
     double d2;
     int inside;
-    if (best->ex && excluded(t, s, best)) return;
+    if (best->ex && excluded(t, s, best->ex)) return;
     const double *X = t->fx + s * t->nn * 3;
     if (t->nn == 3) {
         if (t->degen[s]) return;
@@ -477,7 +485,7 @@ static void make_link(const ffc_tree *t, const cand_t *c, const double p[3],
  * when *r0 > 0 (see collect); *warm and *r0 carried to the next batch.
  * Returns how many have a partner. */
 static long query_batch(const ffc_tree *t, batch_t *B, long nb, const double bp[][3], const long bl[],
-                        const double (*bx)[13], double rmax, const ffc_search_opts *o, ffc_link links[], long *warm,
+                        const self_ex *bx, double rmax, const ffc_search_opts *o, ffc_link links[], long *warm,
                         double *r0)
 {
     int shared = 0;
@@ -498,8 +506,7 @@ static long query_batch(const ffc_tree *t, batch_t *B, long nb, const double bp[
     double rnext = 0.0;
     for (long k = 0; k < nb; k++) {
         cand_t best;
-        best.ex = bx ? bx[k] : NULL;
-        if (bx) { memcpy(best.exn, bx[k] + 9, sizeof best.exn); best.exf = (long)bx[k][12]; }
+        best.ex = bx ? &bx[k] : NULL;
         if (!shared || !nearest_in(t, B, *r0, bp[k], rmax, *warm, &best)) nearest(t, bp[k], rmax, *warm, &best);
         if (best.f >= 0) {
             *warm = best.f;
@@ -536,7 +543,7 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
     long found = 0, warm = -1, nb = 0;
     double bp[BATCH][3]; /* the batch's points, */
     long bl[BATCH];      /* and their links */
-    double bx[BATCH][13]; /* self-contact: each point's facet's corners, unit normal and index */
+    self_ex bx[BATCH];   /* self-contact: each point's facet */
     double r0 = 0.0;     /* the batch radius (0: none yet) */
     batch_t *B = brute ? NULL : malloc(sizeof *B); /* (without it, one traversal per point) */
     for (long f = 0; f < nfs; f++) {
@@ -546,17 +553,13 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
                 X[a][i] = xs[3 * Fs[f * nns + a] + i];
                 if (!isfinite(X[a][i])) { free(B); return FFC_ERR_NONFINITE; }
             }
-        double ex[13];   /* self-contact: the corners, the unit normal and the index of facet f */
+        self_ex ex;      /* self-contact: facet f */
         if (o->self) {
-            double e1[3], e2[3];
-            for (int i = 0; i < 3; i++) {
-                ex[i] = X[0][i]; ex[3 + i] = X[1][i]; ex[6 + i] = X[2][i];
-                e1[i] = X[1][i] - X[0][i]; e2[i] = X[2][i] - X[0][i];
-            }
-            const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-            const double nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            for (int i = 0; i < 3; i++) ex[9 + i] = nn > 0 ? n[i] / nn : 0.0;
-            ex[12] = (double)f;
+            memcpy(ex.X, X, sizeof ex.X);  /* (its corners: the first three rows of X) */
+            corner_normal(ex.X, ex.n);
+            const double nn = sqrt(ffc__dot(ex.n, ex.n));
+            for (int i = 0; i < 3; i++) ex.n[i] = nn > 0 ? ex.n[i] / nn : 0.0;
+            ex.f = f;
         }
         for (int q = 0; q < nq; q++) {
             double N[FFC_MAXNODES], p[3] = {0, 0, 0};
@@ -571,8 +574,7 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
             if (brute) {
                 cand_t best;
                 cand_init(&best, rmax);
-                best.ex = o->self ? ex : NULL;
-                if (o->self) { memcpy(best.exn, ex + 9, sizeof best.exn); best.exf = f; }
+                best.ex = o->self ? &ex : NULL;
                 /* every facet, no pruning */
                 for (long s = 0; s < t->nf; s++) consider(t, s, p, &best);
                 cand_pick(&best);
@@ -581,10 +583,10 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
                 continue;
             }
             memcpy(bp[nb], p, sizeof p);
-            if (o->self) memcpy(bx[nb], ex, sizeof ex);
+            if (o->self) bx[nb] = ex;
             bl[nb++] = f * nq + q;
             if (nb < BATCH && !(f == nfs - 1 && q == nq - 1)) continue;
-            found += query_batch(t, B, nb, (const double(*)[3])bp, bl, o->self ? (const double(*)[13])bx : NULL, rmax, o,
+            found += query_batch(t, B, nb, (const double(*)[3])bp, bl, o->self ? bx : NULL, rmax, o,
                                  links, &warm, &r0);
             nb = 0;
         }

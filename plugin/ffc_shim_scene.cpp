@@ -11,8 +11,8 @@ namespace ffc_shim {
 // The helpers of the scene calls: labels, effects bits, finite arrays.
 namespace {
 
-// Slave and master label lists: non-empty, disjoint.
-// the two sides' labels: apart (false), or the same set (true: self-contact)
+// Slave and master label lists: non-empty, and disjoint (false) or the
+// same set (true: self-contact)
 bool need_pair_labels(const char *fn, KN<long> *sl, KN<long> *ml)
 {
     if (!sl || sl->N() == 0) fail(fn, "argument 'slaveLabs': empty list of labels");
@@ -413,12 +413,11 @@ long addPair(const Named &nm, FFScene *const &C, KN<long> *const &sl, KN<long> *
     if (self) { // self-contact: the facets label by label in the order given (the search links two facing
                 // facets from the one listed first), the same list on both sides
         nfs = 0;
+        std::set<long> done;
         for (long i = 0; i < S.N(); i++) {
+            if (!done.insert(S[i]).second) continue;   // (a label given twice)
             KN<long> one(1);
             one[0] = S[i];
-            bool seen = false;
-            for (long j = 0; j < i; j++) seen |= S[j] == S[i];
-            if (seen) continue;
             std::vector<long> F1, t1;
             nfs += select("slaveLabs", one, F1, t1);
             Fs.insert(Fs.end(), F1.begin(), F1.end());
