@@ -1,5 +1,6 @@
 #!/bin/sh
-# docnames.sh: every name that README.md documents exists in the code.
+# docnames.sh: every name that README.md and scripts/REFERENCE.md document
+# exists in the code.
 # Checked (no FreeFEM needed):
 #   - every plugin call written in backticks or in a code block, ffcName(,
 #     and every backticked bare ffcName: registered by the plugin (plugin/*.cpp:
@@ -17,14 +18,23 @@
 #     (a cell's backticked names; of each, its first identifier:
 #     `material(region, E, nu)` checks material). Other tables are not checked.
 # Prints each missing name and a count; exits 1 if a name is missing, or if
-# a kind of table above is absent or nothing was checked (no vacuous pass).
-#   sh tests/docnames.sh [file]   (default README.md)
-doc=${1:-README.md}
-case "$doc" in /*) ;; *) doc="$(pwd)/$doc" ;; esac
+# a kind of table above is absent from all the files together or nothing
+# was checked (no vacuous pass).
+#   sh tests/docnames.sh [file ...]   (default README.md scripts/REFERENCE.md)
+here=$(pwd)
 cd "$(dirname "$0")/.." || exit 2
-[ -f "$doc" ] || { echo "docnames: no file $doc"; exit 2; }
+[ $# -gt 0 ] || set -- README.md scripts/REFERENCE.md
 tmp=$(mktemp -d) || exit 2
 trap 'rm -rf "$tmp"' EXIT
+names=""
+for f in "$@"; do
+    case "$f" in /*) p=$f ;; *) [ -f "$f" ] && p=$f || p="$here/$f" ;; esac
+    [ -f "$p" ] || { echo "docnames: no file $f"; exit 2; }
+    cat "$p" >> "$tmp/doc"
+    echo >> "$tmp/doc"   # (a table at a file's end ends there)
+    names="$names $(basename "$p")"
+done
+doc="$tmp/doc"
 
 # ---- the names the code defines, one list per kind
 # plugin calls: Global.Add("name", ...) and the type ffcScene
@@ -145,11 +155,11 @@ while read -r kind name; do
     checked=$((checked + 1))
     if [ "$ok" -ne 0 ]; then
         missing=$((missing + 1))
-        echo "docnames: $kind '$name' in $(basename "$doc") is not in the code"
+        echo "docnames: $kind '$name' in$names is not in the code"
     fi
 done < "$tmp/used"
 for k in call idp setting option stat solverstat field scene case; do
-    grep -qx "table $k" "$tmp/used" || { echo "docnames: no table of kind '$k' in $(basename "$doc")"; missing=$((missing + 1)); }
+    grep -qx "table $k" "$tmp/used" || { echo "docnames: no table of kind '$k' in$names"; missing=$((missing + 1)); }
 done
 [ "$checked" -ge 100 ] || { echo "docnames: only $checked names checked (expected 100 or more)"; missing=$((missing + 1)); }
 distinct=$(grep -v '^table ' "$tmp/used" | sort -u | wc -l | tr -d ' ')
