@@ -10,6 +10,7 @@
 #include "ffc/surface.h"
 #include "ffc/search.h"
 #include "ffc/mortar.h"
+#include "ffc/obstacle.h"
 #include "ffc/link.h"
 #include "ffc/newton.h"
 #include "ffc/scene.h"

@@ -10,9 +10,13 @@
 
 static int check_pair(const ffc_pair *P)
 {
-    if (!P || !P->Fs || !P->Fm || !P->X || !P->u) return FFC_ERR_NULL;
-    if ((P->ns != 3 && P->ns != 6) || (P->nm != 3 && P->nm != 6)) return FFC_ERR_NODES;
-    if (P->nfs <= 0 || P->nfm <= 0) return FFC_ERR_EMPTY;
+    if (!P || !P->Fs || (!P->Fm && !P->obst) || !P->X || !P->u) return FFC_ERR_NULL;
+    if ((P->ns != 3 && P->ns != 6) || (P->obst ? P->nm != 0 : P->nm != 3 && P->nm != 6)) return FFC_ERR_NODES;
+    if (P->nfs <= 0 || (!P->obst && P->nfm <= 0)) return FFC_ERR_EMPTY;
+    if (P->obst) {
+        int s = ffc_obstacle_check(P->obst);
+        if (s) return s;
+    }
     if (P->nv <= 0) return FFC_ERR_SIZE;
     return FFC_OK;
 }
@@ -36,7 +40,8 @@ static void gather(int nn, const long *F, long f, const double X[], const double
 
 int ffc__gather_link(const ffc_effects *fx, const ffc_pair *P, int nq, const ffc_link *lk, lnodes_t *n)
 {
-    if (lk->sf < 0 || lk->sf >= P->nfs || (nq > 0 ? lk->q < 0 || lk->q >= nq : lk->q != -1) || lk->mf >= P->nfm)
+    if (lk->sf < 0 || lk->sf >= P->nfs || (nq > 0 ? lk->q < 0 || lk->q >= nq : lk->q != -1) ||
+        lk->mf >= (P->obst ? 1 : P->nfm))
         return FFC_ERR_INDEX;
     for (int a = 0; a < P->ns; a++)
         if (P->Fs[lk->sf * P->ns + a] < 0 || P->Fs[lk->sf * P->ns + a] >= P->nv) return FFC_ERR_INDEX;
@@ -61,8 +66,8 @@ int ffc__eval_link(const ffc_effects *fx, const ffc_pair *P, const double qw[], 
     if (s) return s;
     memcpy(dof, n.dof, sizeof n.dof);
     *nd = n.nd;
-    return ffc_link_contact(fx, P->ns, CP3(n.Xs), CP3(n.Xs0), CP3(n.Ds), lk->xs, ffc__link_weight(lk, qw), P->nm, CP3(n.Xm),
-                            CP3(n.Dm), lambda, lam_t, law, st, R, K);
+    return ffc__link_contact(fx, P->ns, CP3(n.Xs), CP3(n.Xs0), CP3(n.Ds), lk->xs, ffc__link_weight(lk, qw), P->nm,
+                             CP3(n.Xm), CP3(n.Dm), P->obst, lambda, lam_t, law, st, R, K);
 }
 
 void ffc__stats_init(ffc_stats *s)
@@ -131,7 +136,7 @@ int ffc__common_checks(const ffc_effects *fx, const ffc_pair *P, int qdeg, long 
     const double *mo = fx->dynamic ? P->v : P->u_prev;
     if (fric && (!lam_t || !mo)) return FFC_ERR_NULL;
     if (qdeg == 0) { /* segment links, each with its weight */
-        if (!law->nodal || P->ns != P->nm) return FFC_ERR_VALUE;
+        if (!law->nodal || P->ns != P->nm || P->obst) return FFC_ERR_VALUE;
         if (nl < 0) return FFC_ERR_SIZE;
         *nq = 0;
         for (long k = 0; k < nl; k++)

@@ -59,7 +59,7 @@ int ffc_friction_map(const double n[3], const double lam_t[3], const double r[3]
     return FFC_OK;
 }
 
-/* slip r = sum_a N1_a Ds_a - sum_b N2_b(xi) Dm_b, with the nodal motion D
+/* slip r = sum_a N1_a Ds_a - sum_b N2_b(xi) Dm_b - dm (a rigid obstacle's motion), with the nodal motion D
  * = x - x^n (quasi-static) or the velocity v (dynamic) */
 void ffc__link_slip(const lgeo_t *g, const double Ds[][3], const double Dm[][3], double r[3])
 {
@@ -67,7 +67,7 @@ void ffc__link_slip(const lgeo_t *g, const double Ds[][3], const double Dm[][3],
         double v = 0.0;
         for (int a = 0; a < g->ns; a++) v += g->N1[a] * Ds[a][i];
         for (int b = 0; b < g->nm; b++) v -= g->N2[b] * Dm[b][i];
-        r[i] = v;
+        r[i] = v - g->dm[i];
     }
 }
 

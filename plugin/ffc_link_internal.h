@@ -23,6 +23,7 @@ typedef struct {
     double dn[3][FFC_MAXDOF];       /* d n_i / du (turning of the normal) */
     double G[FFC_MAXDOF];           /* dg / du */
     double dda[FFC_MAXDOF];         /* d da / du (zero with small strain) */
+    double dm[3];                   /* a rigid obstacle's motion at the foot (ffc_obstacle.d; 0 for facets) */
 } lgeo_t;
 
 /* The facets of one link, gathered. */
@@ -85,10 +86,17 @@ typedef struct {
 } nodal_t;
 
 /* ffc_normal.c: geometry of one link (D = dG/du when D != NULL; xm0: a
- * foot found before, the start of a curved master's projection, or NULL) */
+ * foot found before, the start of a curved master's projection, or NULL;
+ * ob: a rigid obstacle as the master, with nm = 0, or NULL) */
 int ffc__link_geometry(const ffc_effects *fx, int ns, const double Xs[][3], const double Xs0[][3],
                        const double xs[2], double w, int nm, const double Xm[][3], const double xm0[2],
-                       ffc_link_state *st, lgeo_t *g, double D[FFC_MAXDOF][FFC_MAXDOF]);
+                       const ffc_obstacle *ob, ffc_link_state *st, lgeo_t *g, double D[FFC_MAXDOF][FFC_MAXDOF]);
+
+/* ffc_normal.c: ffc_link_contact and ffc_link_obstacle (ob: the obstacle with nm = 0 and Xm, Dm unused) */
+int ffc__link_contact(const ffc_effects *effects, int ns, const double Xs[][3], const double Xs0[][3],
+                      const double Ds[][3], const double xs[2], double w, int nm, const double Xm[][3],
+                      const double Dm[][3], const ffc_obstacle *ob, double lambda, const double lam_t[3],
+                      const ffc_law *law, ffc_link_state *st, double R[FFC_MAXDOF], double K[FFC_MAXDOF][FFC_MAXDOF]);
 
 /* ffc_friction.c: the slip r of a link and its derivative Q = dr/du */
 void ffc__link_slip(const lgeo_t *g, const double Ds[][3], const double Dm[][3], double r[3]);

@@ -199,7 +199,7 @@ int ffc__nodal_prepare(const ffc_effects *fx, const ffc_pair *P, const double qw
         ffc_link_state ls;
         lgeo_t g;
         s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), lk->xs, ffc__link_weight(lk, qw), P->nm, CP3(ln.Xm), lk->xm,
-                               &ls, &g, NULL);
+                               P->obst, &ls, &g, NULL);
         if (s) { *bad = k; st = s; break; }
         memcpy(e->G, g.G, sizeof e->G);
         memcpy(e->dda, g.dda, sizeof e->dda);

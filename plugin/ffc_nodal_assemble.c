@@ -117,7 +117,7 @@ static int segment_motion(const ffc_effects *fx, const ffc_pair *P, const ffc_la
         int s = ffc__gather_link(fx, P, 0, &tmp, &ln);
         ffc_link_state st;
         lgeo_t g;
-        if (!s) s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), tmp.xs, 1.0, P->nm, CP3(ln.Xm), NULL, &st, &g, NULL);
+        if (!s) s = ffc__link_geometry(fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), tmp.xs, 1.0, P->nm, CP3(ln.Xm), NULL, NULL, &st, &g, NULL);
         if (s) { *bad = b; return s; }
         nedge_t *e = &E[b];
         e->g = st.gap;
@@ -353,7 +353,7 @@ static int link_terms(nasm_t *S, const double qw[], int nq, double R[], ffc_stat
         lgeo_t g;
         if (!s)
             s = ffc__link_geometry(S->fx, P->ns, CP3(ln.Xs), CP3(ln.Xs0), lk->xs, ffc__link_weight(lk, qw), P->nm, CP3(ln.Xm),
-                                   lk->xm, &sg, &g, D);
+                                   lk->xm, P->obst, &sg, &g, D);
         if (s) { *bad = E->k; return s; }
         for (int a = 0; a < E->nd; a++)
             for (int b = 0; b < E->nd; b++) D[a][b] = -t * (E->da * D[a][b] + E->G[a] * E->dda[b]);

@@ -17,10 +17,36 @@
  * with dn/du and dxi/du from ffc_project_deriv (the variation of the
  * master normal and the sliding of the foot), and
  *     d da / d x_a = w J N1_a,alpha tau^alpha
- * when the area element follows the deformation (finite_def). */
+ * when the area element follows the deformation (finite_def).
+ * A rigid obstacle as the master (ob, nm = 0): g = phi(x_s), n = grad phi
+ * and H = dn/dx from ffc_obstacle_gap, so that with x_s = sum_a N1_a x_a
+ *     G[3a+i] = N1_a n_i,  dn_i/du_{3b+j} = H_ij N1_b,
+ *     D[3a+i][3b+j] = N1_a N1_b H_ij
+ * exactly (no foot sliding: the obstacle has no unknowns). */
+static int obstacle_geometry(const ffc_obstacle *ob, int ns, const double p[3], ffc_link_state *st, lgeo_t *g,
+                             double D[FFC_MAXDOF][FFC_MAXDOF])
+{
+    double n[3], H[3][3], gap;
+    int s = ffc_obstacle_gap(ob, p, &gap, n, H);
+    if (s) return s;
+    const int nd = 3 * ns;
+    for (int i = 0; i < 3; i++) { st->n[i] = n[i]; g->dm[i] = ob->d[i]; }
+    st->gap = gap;
+    for (int a = 0; a < ns; a++)
+        for (int i = 0; i < 3; i++) {
+            g->G[3 * a + i] = g->N1[a] * n[i];
+            for (int j = 0; j < 3; j++) g->dn[i][3 * a + j] = H[i][j] * g->N1[a];
+        }
+    for (int k = 0; k < nd; k++) g->dxi[0][k] = g->dxi[1][k] = 0.0;
+    if (D)
+        for (int k = 0; k < nd; k++)
+            for (int l = 0; l < nd; l++) D[k][l] = g->N1[k / 3] * g->dn[k % 3][l];
+    return FFC_OK;
+}
+
 int ffc__link_geometry(const ffc_effects *fx, int ns, const double Xs[][3], const double Xs0[][3],
                        const double xs[2], double w, int nm, const double Xm[][3], const double xm0[2],
-                       ffc_link_state *st, lgeo_t *g, double D[FFC_MAXDOF][FFC_MAXDOF])
+                       const ffc_obstacle *ob, ffc_link_state *st, lgeo_t *g, double D[FFC_MAXDOF][FFC_MAXDOF])
 {
     const int nd = 3 * (ns + nm);
     g->ns = ns;
@@ -35,19 +61,26 @@ int ffc__link_geometry(const ffc_effects *fx, int ns, const double Xs[][3], cons
     ffc_point sp;
     s = ffc_facet_point(ns, fx->finite_def ? Xs : Xs0, xs, &sp);
     if (s) return s;
-    ffc_proj pr;
-    s = ffc__project_free_from(nm, Xm, p, xm0, &pr);
-    if (s) return s;
     memset(st, 0, sizeof *st);
-    for (int i = 0; i < 3; i++) { st->x[i] = p[i]; st->n[i] = pr.n[i]; }
-    st->xi[0] = pr.xi[0];
-    st->xi[1] = pr.xi[1];
-    st->gap = pr.gap;
+    for (int i = 0; i < 3; i++) { st->x[i] = p[i]; g->dm[i] = 0.0; }
     st->da = w * sp.j;
-    s = ffc_project_deriv(ns, g->N1, nm, Xm, &pr, g->dxi, g->G, g->dn);
-    if (s) return s;
-    ffc_shape(nm, pr.xi, g->N2, g->dN2);
     for (int k = 0; k < nd; k++) g->dda[k] = 0.0;
+    ffc_proj pr;
+    if (ob) {
+        if (nm != 0) return FFC_ERR_NODES;
+        s = obstacle_geometry(ob, ns, p, st, g, D);
+        if (s) return s;
+    } else {
+        s = ffc__project_free_from(nm, Xm, p, xm0, &pr);
+        if (s) return s;
+        for (int i = 0; i < 3; i++) st->n[i] = pr.n[i];
+        st->xi[0] = pr.xi[0];
+        st->xi[1] = pr.xi[1];
+        st->gap = pr.gap;
+        s = ffc_project_deriv(ns, g->N1, nm, Xm, &pr, g->dxi, g->G, g->dn);
+        if (s) return s;
+        ffc_shape(nm, pr.xi, g->N2, g->dN2);
+    }
     if (fx->finite_def) {
         double tc[2][3];
         for (int i = 0; i < 3; i++) {
@@ -58,7 +91,7 @@ int ffc__link_geometry(const ffc_effects *fx, int ns, const double Xs[][3], cons
             for (int i = 0; i < 3; i++)
                 g->dda[3 * a + i] = w * sp.j * (dN1[a][0] * tc[0][i] + dN1[a][1] * tc[1][i]);
     }
-    if (!D) return FFC_OK;
+    if (!D || ob) return FFC_OK;
     for (int k = 0; k < nd; k++) {
         const int slave = k < 3 * ns, c = k % 3;
         const int node = slave ? k / 3 : (k - 3 * ns) / 3;
@@ -82,26 +115,24 @@ int ffc__link_geometry(const ffc_effects *fx, int ns, const double Xs[][3], cons
  * with G, D, dda from ffc__link_geometry.  With friction,
  * ffc__link_friction adds its terms and the coupling
  * F (dt_N/du)^T = -eps F G^T. */
-int ffc_link_contact(const ffc_effects *effects, int ns, const double Xs[][3],
-                     const double Xs0[][3], const double Ds[][3], const double xs[2],
-                     double w, int nm, const double Xm[][3], const double Dm[][3],
-                     double lambda, const double lam_t[3], const ffc_law *law,
-                     ffc_link_state *st, double R[FFC_MAXDOF],
-                     double K[FFC_MAXDOF][FFC_MAXDOF])
+int ffc__link_contact(const ffc_effects *effects, int ns, const double Xs[][3], const double Xs0[][3],
+                      const double Ds[][3], const double xs[2], double w, int nm, const double Xm[][3],
+                      const double Dm[][3], const ffc_obstacle *ob, double lambda, const double lam_t[3],
+                      const ffc_law *law, ffc_link_state *st, double R[FFC_MAXDOF], double K[FFC_MAXDOF][FFC_MAXDOF])
 {
-    if (!effects || !Xs || !Xs0 || !xs || !Xm || !st || !R || !law) return FFC_ERR_NULL;
-    if ((ns != 3 && ns != 6) || (nm != 3 && nm != 6)) return FFC_ERR_NODES;
+    if (!effects || !Xs || !Xs0 || !xs || (!Xm && !ob) || !st || !R || !law) return FFC_ERR_NULL;
+    if ((ns != 3 && ns != 6) || (ob ? nm != 0 : nm != 3 && nm != 6)) return FFC_ERR_NODES;
     const double eps = law->eps_n;
     if (!(eps > 0) || isinf(eps) || !isfinite(lambda) || !(w > 0)) return FFC_ERR_VALUE;
     const int fric = ffc__friction_on(effects, law);
-    if (fric && (!Ds || !Dm || !lam_t)) return FFC_ERR_NULL;
+    if (fric && (!Ds || (!Dm && !ob) || !lam_t)) return FFC_ERR_NULL;
     if (fric && effects->dynamic && !ffc__dynamic_ok(law)) return FFC_ERR_VALUE;
     const int nd = 3 * (ns + nm);
     for (int k = 0; k < nd; k++) R[k] = 0.0;
     if (K)
         for (int k = 0; k < nd; k++) memset(K[k], 0, (size_t)nd * sizeof K[k][0]);
     lgeo_t g;
-    int s = ffc__link_geometry(effects, ns, Xs, Xs0, xs, w, nm, Xm, NULL, st, &g, K && !ffc__law_material(law) ? K : NULL);
+    int s = ffc__link_geometry(effects, ns, Xs, Xs0, xs, w, nm, Xm, NULL, ob, st, &g, K && !ffc__law_material(law) ? K : NULL);
     if (s) return s;
     const double trial = lambda - eps * st->gap;
     st->active = trial > 0.0;
@@ -135,6 +166,28 @@ int ffc_link_contact(const ffc_effects *effects, int ns, const double Xs[][3],
         for (int k = 0; k < nd; k++)
             for (int l = 0; l < nd; l++) K[k][l] -= eps * F[k] * g.G[l];
     return FFC_OK;
+}
+
+int ffc_link_contact(const ffc_effects *effects, int ns, const double Xs[][3],
+                     const double Xs0[][3], const double Ds[][3], const double xs[2],
+                     double w, int nm, const double Xm[][3], const double Dm[][3],
+                     double lambda, const double lam_t[3], const ffc_law *law,
+                     ffc_link_state *st, double R[FFC_MAXDOF],
+                     double K[FFC_MAXDOF][FFC_MAXDOF])
+{
+    if (!Xm) return FFC_ERR_NULL;
+    return ffc__link_contact(effects, ns, Xs, Xs0, Ds, xs, w, nm, Xm, Dm, NULL, lambda, lam_t, law, st, R, K);
+}
+
+int ffc_link_obstacle(const ffc_effects *effects, int ns, const double Xs[][3], const double Xs0[][3],
+                      const double Ds[][3], const double xs[2], double w, const ffc_obstacle *ob, double lambda,
+                      const double lam_t[3], const ffc_law *law, ffc_link_state *st, double R[FFC_MAXDOF],
+                      double K[FFC_MAXDOF][FFC_MAXDOF])
+{
+    if (!ob) return FFC_ERR_NULL;
+    int s = ffc_obstacle_check(ob);
+    if (s) return s;
+    return ffc__link_contact(effects, ns, Xs, Xs0, Ds, xs, w, 0, NULL, NULL, ob, lambda, lam_t, law, st, R, K);
 }
 
 int ffc_link_normal(const ffc_effects *effects, int ns, const double Xs[][3],

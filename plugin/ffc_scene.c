@@ -298,7 +298,7 @@ static int pair_alloc_links(scene_pair *p)
 int ffc__nts_alloc(const ffc_scene *s, scene_pair *p)
 {
     ffc_pair v;
-    memset(&v, 0, sizeof v);
+    memset(&v, 0, sizeof v);   /* (obst NULL: node-to-surface pairs have facets on both sides) */
     v.ns = v.nm = s->nper;
     v.nfs = p->nfs;
     v.Fs = p->Fs;
@@ -326,19 +326,23 @@ int ffc__nts_alloc(const ffc_scene *s, scene_pair *p)
     return FFC_OK;
 }
 
-int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const long Fm[],
-                       const ffc_pair_opts *o, long *bad)
+/* a pair of facets Fs on facets Fm, or (ob != NULL, nfm = 0) on a rigid obstacle */
+static int pair_add(ffc_scene *s, long nfs, const long Fs[], long nfm, const long Fm[], const ffc_obstacle *ob,
+                    const ffc_pair_opts *o, long *bad)
 {
     long dummy;
     if (!bad) bad = &dummy;
     *bad = -1;
-    if (!s || !Fs || !Fm || !o) return FFC_ERR_NULL;
-    if (nfs <= 0 || nfm <= 0) return FFC_ERR_EMPTY;
+    if (!s || !Fs || (!Fm && !ob) || !o) return FFC_ERR_NULL;
+    if (nfs <= 0 || (!ob && nfm <= 0)) return FFC_ERR_EMPTY;
     int st = ffc_pair_opts_check(o);
     if (st) return st;
+    if (ob && ((st = ffc_obstacle_check(ob)) || o->method != FFC_METHOD_AL || o->search.self))
+        return st ? st : FFC_ERR_VALUE;
     if ((st = check_nodes(nfs * s->nper, Fs, s->nv, bad))) return st;
-    if ((st = check_nodes(nfm * s->nper, Fm, s->nv, bad))) return st;
-    if (o->search.self) { /* self-contact: one surface on both sides */
+    if (!ob && (st = check_nodes(nfm * s->nper, Fm, s->nv, bad))) return st;
+    if (ob) {
+    } else if (o->search.self) { /* self-contact: one surface on both sides */
         if (nfs != nfm || memcmp(Fs, Fm, (size_t)(nfs * s->nper) * sizeof *Fs)) return FFC_ERR_VALUE;
     } else if ((st = check_fused(s->nper, nfs, Fs, nfm, Fm, s->nv, bad)))
         return st;
@@ -356,15 +360,20 @@ int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const 
     memset(p, 0, sizeof *p);
     p->o = *o;
     p->nfs = nfs;
-    p->nfm = nfm;
+    p->nfm = ob ? 0 : nfm;
     p->Fs = malloc(nfs * s->nper * sizeof *p->Fs);
-    p->Fm = malloc(nfm * s->nper * sizeof *p->Fm);
-    if (!p->Fs || !p->Fm || pair_alloc_links(p) || pair_alloc_lambda(p, s->nv)) {
+    p->Fm = ob ? NULL : malloc(nfm * s->nper * sizeof *p->Fm);
+    if (!p->Fs || (!ob && !p->Fm) || pair_alloc_links(p) || pair_alloc_lambda(p, s->nv)) {
         pair_free(p);
         return FFC_ERR_MEMORY;
     }
     memcpy(p->Fs, Fs, nfs * s->nper * sizeof *Fs);
-    memcpy(p->Fm, Fm, nfm * s->nper * sizeof *Fm);
+    if (!ob) memcpy(p->Fm, Fm, nfm * s->nper * sizeof *Fm);
+    if (ob) {
+        p->obst = 1;
+        p->ob = p->ob0 = *ob;
+        for (int i = 0; i < 3; i++) p->ob.d[i] = p->ob0.d[i] = 0.0;
+    }
     {
         unsigned char *m = calloc(s->nv, 1);
         if (!m) { pair_free(p); return FFC_ERR_MEMORY; }
@@ -377,6 +386,51 @@ int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const 
         return st;
     }
     return s->np++;
+}
+
+int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const long Fm[],
+                       const ffc_pair_opts *o, long *bad)
+{
+    if (!Fm) return FFC_ERR_NULL;
+    return pair_add(s, nfs, Fs, nfm, Fm, NULL, o, bad);
+}
+
+int ffc_scene_add_obstacle(ffc_scene *s, long nfs, const long Fs[], const ffc_obstacle *ob, const ffc_pair_opts *o,
+                           long *bad)
+{
+    if (!ob) return FFC_ERR_NULL;
+    return pair_add(s, nfs, Fs, 0, NULL, ob, o, bad);
+}
+
+/* (ffc_scene_state.h) */
+void ffc__obstacle_motion(const ffc_scene *s, scene_pair *p)
+{
+    for (int i = 0; i < 3; i++) {
+        const double m = p->ob.c[i] - p->ob0.c[i];
+        p->ob.d[i] = s->fx.dynamic ? (s->dt > 0 ? m / s->dt : 0.0) : m;
+    }
+}
+
+int ffc_scene_set_obstacle(ffc_scene *s, int k, const ffc_obstacle *ob)
+{
+    if (!s || !ob) return FFC_ERR_NULL;
+    if (k < 0 || k >= s->np) return FFC_ERR_INDEX;
+    scene_pair *p = &s->p[k];
+    int st = ffc_obstacle_check(ob);
+    if (st) return st;
+    if (!p->obst || ob->kind != p->ob.kind) return FFC_ERR_VALUE;
+    p->ob = *ob;
+    ffc__obstacle_motion(s, p);
+    return FFC_OK;
+}
+
+int ffc_scene_obstacle(const ffc_scene *s, int k, ffc_obstacle *ob)
+{
+    if (!s || !ob) return FFC_ERR_NULL;
+    if (k < 0 || k >= s->np) return FFC_ERR_INDEX;
+    if (!s->p[k].obst) return FFC_ERR_VALUE;
+    *ob = s->p[k].ob;
+    return FFC_OK;
 }
 
 int ffc_scene_pair_opts(const ffc_scene *s, int k, ffc_pair_opts *o)
@@ -435,5 +489,7 @@ int ffc_scene_set_motion(ffc_scene *s, const double v[], double dt, double dvdu)
     memcpy(s->v, v, 3 * s->nv * sizeof *v);
     s->dt = dt;
     s->dvdu = dvdu;
+    for (int k = 0; k < s->np; k++)
+        if (s->p[k].obst) ffc__obstacle_motion(s, &s->p[k]);
     return FFC_OK;
 }

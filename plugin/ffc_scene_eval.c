@@ -105,6 +105,13 @@ int ffc_scene_search(ffc_scene *s, const double u[], long *linked, long *bad)
     for (int k = 0; k < s->np; k++) {
         scene_pair *p = &s->p[k];
         if (p->o.method == FFC_METHOD_NTS) continue; /* its nodes are located by ffc_scene_nts_rows */
+        if (p->obst) {
+            st = ffc_obstacle_search(&p->ob, s->nper, p->nfs, p->Fs, s->nv, s->x, p->o.qdeg, &p->o.search, p->nl,
+                                     p->links);
+            if (st < 0) { *bad = k; return st; }
+            total += st;
+            continue;
+        }
         /* the tree keeps its order and refits its boxes as the surfaces move */
         st = p->tree ? ffc_tree_refit(p->tree, s->x) : ffc_tree_build(s->nper, p->nfm, p->Fm, s->nv, s->x, &p->tree);
         if (st) { *bad = k; return st; }
@@ -135,6 +142,8 @@ pair_call ffc__pair_view(const ffc_scene *s, const scene_pair *p, const double u
     v->u = u;
     v->u_prev = s->u_prev;
     v->v = s->v;
+    v->obst = p->obst ? &p->ob : NULL;
+    if (p->obst) v->nm = 0;
     memset(law, 0, sizeof *law);
     law->eps_n = p->o.eps_n;
     law->nodal = p->o.nodal;
@@ -222,7 +231,7 @@ static long pair_nodes(const ffc_scene *s, const scene_pair *p, unsigned char ma
     for (long k = 0; k < p->nl; k++) {
         const ffc_link *L = &p->links[k];
         if (L->mf < 0) continue;
-        for (int a = 0; a < 2 * s->nper; a++) {
+        for (int a = 0; a < (p->obst ? 1 : 2) * s->nper; a++) {
             const long x = a < s->nper ? p->Fs[L->sf * s->nper + a] : p->Fm[L->mf * s->nper + a - s->nper];
             mark[x] = 1;
             if (x < lo) lo = x;
@@ -460,6 +469,7 @@ int ffc_scene_commit(ffc_scene *s, const double u[])
         memcpy(p->lam0, p->lam, p->nlam * sizeof *p->lam);
         memcpy(p->lam_t0, p->lam_t, 3 * p->nlam * sizeof *p->lam_t);
         p->st_step = p->st;
+        if (p->obst) { p->ob0 = p->ob; ffc__obstacle_motion(s, p); }
         if (p->nodes) {
             memcpy(p->nodes0, p->nodes, p->nn * sizeof *p->nodes);
             p->nst_step = p->nst;
@@ -493,6 +503,7 @@ int ffc_scene_reset(ffc_scene *s)
         memset(p->lam_t0, 0, 3 * p->nlam * sizeof *p->lam_t0);
         memset(&p->st, 0, sizeof p->st);
         memset(&p->st_step, 0, sizeof p->st_step);
+        if (p->obst) { p->ob0 = p->ob; ffc__obstacle_motion(s, p); }
         for (long l = 0; l < p->nl; l++) p->links[l].mf = -1;
         if (p->o.method == FFC_METHOD_MORTAR) p->nl = p->ne = p->nmp = 0;
         if (p->nodes) {

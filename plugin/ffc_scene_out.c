@@ -227,7 +227,7 @@ int ffc_scene_facet_size(const ffc_scene *s, int pair, double *h)
         if (pair >= 0 && k != pair) continue;
         const scene_pair *p = &s->p[k];
         const double hs = ffc__mean_size(s->nper, p->nfs, p->Fs, s->X),
-                     hm = ffc__mean_size(s->nper, p->nfm, p->Fm, s->X);
+                     hm = p->obst ? INFINITY : ffc__mean_size(s->nper, p->nfm, p->Fm, s->X);
         if (hs < r) r = hs;
         if (hm < r) r = hm;
     }
@@ -257,12 +257,13 @@ static int side_stiffness(int nper, long nf, const long F[], const double X[], c
 
 int ffc_scene_auto_penalty(const ffc_scene *s, int pair, const double Ep_s[], const double Ep_m[], double *eps)
 {
-    if (!s || !Ep_s || !Ep_m || !eps) return FFC_ERR_NULL;
+    if (!s || !Ep_s || !eps) return FFC_ERR_NULL;
     if (pair < 0 || pair >= s->np) return FFC_ERR_INDEX;
     const scene_pair *p = &s->p[pair];
-    double ks, km;
+    if (!Ep_m && !p->obst) return FFC_ERR_NULL;
+    double ks, km = INFINITY;   /* (a rigid obstacle: no compliance on its side) */
     int st = side_stiffness(s->nper, p->nfs, p->Fs, s->X, Ep_s, &ks);
-    if (!st) st = side_stiffness(s->nper, p->nfm, p->Fm, s->X, Ep_m, &km);
+    if (!st && !p->obst) st = side_stiffness(s->nper, p->nfm, p->Fm, s->X, Ep_m, &km);
     if (st) return st;
     *eps = 200.0 / (1.0 / ks + 1.0 / km);
     return FFC_OK;

@@ -348,7 +348,7 @@ int ffc_scene_newton(ffc_scene *s, const double r[], double u[], const ffc_newto
         for (long l = 0; l < p->nl; l++) {
             const ffc_link *L = &p->links[l];
             if (L->mf < 0) continue;
-            for (int side = 0; side < 2; side++) {
+            for (int side = 0; side < (p->obst ? 1 : 2); side++) {
                 const long *F = side ? p->Fm + L->mf * s->nper : p->Fs + L->sf * s->nper;
                 for (int a = 0; a < s->nper; a++)
                     for (int c = 0; c < 3; c++) {

@@ -31,6 +31,10 @@ typedef struct {
     int located;       /* 1 once the nodes were located (their states set) */
     long row0, nr;     /* its rows in the stacked rows of the last ffc_scene_nts_rows */
     ffc_nts_stats nst, nst_step; /* the last update, and at the last commit */
+    /* a rigid obstacle as the master (obst = 1; nfm = 0, Fm NULL) */
+    int obst;
+    ffc_obstacle ob, ob0; /* its placement now (ob.d: its motion since ob0, ffc__obstacle_motion),
+                          and at the last commit */
 } scene_pair;
 
 struct ffc_scene {
@@ -82,6 +86,10 @@ typedef struct {
 /* The slave node table of a node-to-surface pair, every node open and
  * not located (and its checkpoint); on failure the pair keeps its own. */
 int ffc__nts_alloc(const ffc_scene *s, scene_pair *p);
+
+/* An obstacle pair's motion ob.d from its placements: quasi-static
+ * ob.c - ob0.c, dynamic (ob.c - ob0.c) / dt. */
+void ffc__obstacle_motion(const ffc_scene *s, scene_pair *p);
 
 /* ---- ffc_scene_eval.c */
 

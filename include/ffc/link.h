@@ -6,6 +6,7 @@
 #include "geom.h"
 #include "search.h"
 #include "mortar.h"
+#include "obstacle.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -67,6 +68,9 @@ typedef struct {
     const double *v;   /* [nv*3] velocities at the end of the step (length/time);
                           read only when friction is on in a dynamic scene
                           (effects->dynamic), in place of u_prev */
+    const ffc_obstacle *obst; /* NULL: the master is the facets Fm; else a rigid
+                          obstacle (ffc/obstacle.h): nm = 0, Fm and nfm unused,
+                          a linked link has mf = 0 and only slave unknowns */
 } ffc_pair;
 
 /* The form of a contact tangent: what a scene's assembly writes, a law's
@@ -211,6 +215,15 @@ int ffc_link_contact(const ffc_effects *effects, int ns, const double Xs[][3],
                      double lambda, const double lam_t[3], const ffc_law *law,
                      ffc_link_state *st, double R[FFC_MAXDOF],
                      double K[FFC_MAXDOF][FFC_MAXDOF]);
+
+/* The same against a rigid obstacle (ffc/obstacle.h) as the master:
+ * unknowns the slave nodes only, nd = 3 ns; the gap, normal and its
+ * curvature exact; friction against the obstacle's motion ob->d.
+ * FFC_ERR_DEGENERATE where the obstacle has no normal (ffc_obstacle_gap). */
+int ffc_link_obstacle(const ffc_effects *effects, int ns, const double Xs[][3], const double Xs0[][3],
+                      const double Ds[][3], const double xs[2], double w, const ffc_obstacle *ob, double lambda,
+                      const double lam_t[3], const ffc_law *law, ffc_link_state *st, double R[FFC_MAXDOF],
+                      double K[FFC_MAXDOF][FFC_MAXDOF]);
 
 /* Summary of an assembly or augmentation. */
 typedef struct {

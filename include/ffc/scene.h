@@ -127,6 +127,25 @@ int ffc_scene_effects(const ffc_scene *s, ffc_effects *fx);
 int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const long Fm[],
                        const ffc_pair_opts *o, long *bad);
 
+/* Adds a pair of slave facets Fs[nfs*nper] on the rigid obstacle ob
+ * (ffc/obstacle.h; ob->d is ignored: the scene keeps the obstacle's motion
+ * from its placements) with options o (the augmented Lagrangian, self 0:
+ * FFC_ERR_VALUE otherwise); returns its index or an error as
+ * ffc_scene_add_pair.  The pair has no master facets (ffc_scene_nfacets
+ * 0) and its links only slave unknowns; capture_rel counts in the slave
+ * facet's size. */
+int ffc_scene_add_obstacle(ffc_scene *s, long nfs, const long Fs[], const ffc_obstacle *ob, const ffc_pair_opts *o,
+                           long *bad);
+/* Places obstacle pair k's obstacle (the same kind; ob->d ignored): its
+ * motion since the last commit (ffc_scene_commit) is c - c at the commit,
+ * divided by dt in a dynamic scene: the velocity its surface has for
+ * friction (a translation: a turn of the shape gives its surface no
+ * velocity).  FFC_ERR_VALUE for a pair without an obstacle or another
+ * kind; ffc_obstacle_check's errors.  ffc_scene_obstacle reads it back,
+ * with the motion in d. */
+int ffc_scene_set_obstacle(ffc_scene *s, int k, const ffc_obstacle *ob);
+int ffc_scene_obstacle(const ffc_scene *s, int k, ffc_obstacle *ob);
+
 /* Options of pair k, and their change (a new qdeg or nodal setting
  * resets that pair's links and multipliers). */
 int ffc_scene_pair_opts(const ffc_scene *s, int k, ffc_pair_opts *o);
@@ -217,6 +236,8 @@ double ffc_plane_modulus(double lame1, double lame2);
  * A soft body against a stiff one gets about 200 times the soft layer's
  * stiffness: the penetration stays a small part of the soft side's
  * deformation.  FFC_ERR_VALUE for a modulus that is not positive. */
+/* An obstacle pair: the obstacle is rigid (k_m infinite: 200 k_s) and Ep_m
+ * may be NULL. */
 int ffc_scene_auto_penalty(const ffc_scene *s, int pair, const double Ep_s[], const double Ep_m[], double *eps);
 
 /* Facets of pair k's slave (master = 0) or master side. */

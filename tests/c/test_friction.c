@@ -421,7 +421,7 @@ static void ascene_make(ascene *a, int nodal, uint64_t *s)
     const long nlam = nodal ? NV : NL;
     for (long k = 0; k < nlam; k++) a->lam[k] = (nodal && k < 25) ? 0.0 : test_rand(s, 0.0, 0.3);
     for (int k = 0; k < NL * 3; k++) a->lam_t[k] = test_rand(s, -0.05, 0.05);
-    ffc_pair P = {3, NFS, a->Fs, 3, NFM, a->Fm, NV, a->X, a->u, a->up, a->v};
+    ffc_pair P = {3, NFS, a->Fs, 3, NFM, a->Fm, NV, a->X, a->u, a->up, a->v, NULL};
     a->P = P;
 }
 

@@ -189,7 +189,7 @@ static void test_assemble_augment(void **state)
     double u[8 * 3] = {0};
     for (int v = 4; v < 8; v++) u[3 * v + 2] = -0.01;
     const long Fm[6] = {0, 1, 2, 0, 2, 3}, Fs[6] = {4, 6, 5, 4, 7, 6};
-    ffc_pair P = {3, 2, Fs, 3, 2, Fm, 8, X, u, NULL, NULL};
+    ffc_pair P = {3, 2, Fs, 3, 2, Fm, 8, X, u, NULL, NULL, NULL};
     ffc_effects fx = {0, 0, 0};
     double xs[8 * 3];
     for (int i = 0; i < 24; i++) xs[i] = X[i] + u[i];
@@ -281,7 +281,7 @@ static void test_nodal_tangent(void **state)
     double lam[NV] = {0};
     for (int v = 25; v < NV; v++) lam[v] = v % 3 ? test_rand(&s, 0.0, 0.5) : 0.0;
     ffc_law law = {60, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
-    ffc_pair P = {3, NFS, Fs, 3, NFM, Fm, NV, X, u, NULL, NULL};
+    ffc_pair P = {3, NFS, Fs, 3, NFM, Fm, NV, X, u, NULL, NULL, NULL};
     enum { CAP = 200000 };
     long *Ti = malloc(CAP * sizeof *Ti), *Tj = malloc(CAP * sizeof *Tj), nt, bad;
     double *Tv = malloc(CAP * sizeof *Tv);

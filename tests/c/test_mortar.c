@@ -346,7 +346,7 @@ static void test_uniform_pressure(void **state)
         a = b;
     }
     for (long v = NVM; v < NV; v++) lam[v] = p;
-    ffc_pair P = {3, 2 * NS * NS, Fs, 3, 2 * NM * NM, Fm, NV, X, u, NULL, NULL};
+    ffc_pair P = {3, 2 * NS * NS, Fs, 3, 2 * NM * NM, Fm, NV, X, u, NULL, NULL, NULL};
     ffc_effects fx = {0, 0, 0};
     for (int d = 0; d <= 1; d++) {
         ffc_law law = {1e3, 1, 0, 0.0, 0.0, 0.0, 0.0, NULL, d ? dual : NULL, 0, NULL, 0, NULL, NULL, NULL};
@@ -411,7 +411,7 @@ static void mscene_make(mscene *a, uint64_t *s)
     }
     for (int k = 0; k < TNV; k++) a->lam[k] = k < 25 ? 0.0 : test_rand(s, 0.0, 0.3);
     for (int k = 0; k < TNV * 3; k++) a->lam_t[k] = test_rand(s, -0.05, 0.05);
-    ffc_pair P = {3, TNFS, a->Fs, 3, TNFM, a->Fm, TNV, a->X, a->u, a->up, NULL};
+    ffc_pair P = {3, TNFS, a->Fs, 3, TNFM, a->Fm, TNV, a->X, a->u, a->up, NULL, NULL};
     a->P = P;
 }
 
@@ -539,7 +539,7 @@ static void rs_check(rscene *a, const ffc_effects *fx, ffc_law law, int regime)
     static double K[3 * RV][3 * RV], K0[3 * RV][3 * RV];
     long *Ti = malloc(RCAP * sizeof *Ti), *Tj = malloc(RCAP * sizeof *Tj), nt, bad;
     double *Tv = malloc(RCAP * sizeof *Tv), R[3 * RV];
-    ffc_pair P = {3, 2 * RS * RS, a->Fs, 3, 2 * RM * RM, a->Fm, RV, a->X, a->u, a->up, NULL};
+    ffc_pair P = {3, 2 * RS * RS, a->Fs, 3, 2 * RM * RM, a->Fm, RV, a->X, a->u, a->up, NULL, NULL};
     rs_link(a);
     law.dual = a->dual;
     ffc_stats st;

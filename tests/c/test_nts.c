@@ -20,7 +20,7 @@ static void scene(double X[3 * NV], long Fm[32 * 3], long Fs[18 * 3], ffc_pair *
 {
     test_pair_scene(X, Fm, Fs);
     memset(u, 0, 3 * NV * sizeof u[0]);
-    ffc_pair q = {3, 18, Fs, 3, 32, Fm, NV, X, u, NULL, NULL};
+    ffc_pair q = {3, 18, Fs, 3, 32, Fm, NV, X, u, NULL, NULL, NULL};
     *p = q;
 }
 
@@ -196,7 +196,7 @@ static void one_facet_init(one_facet *f, const double X[18])
         f->Fm[a] = a;
         f->Fs[a] = 3 + a;
     }
-    ffc_pair q = {3, 1, f->Fs, 3, 1, f->Fm, 6, f->X, f->u, f->up, NULL};
+    ffc_pair q = {3, 1, f->Fs, 3, 1, f->Fm, 6, f->X, f->u, f->up, NULL, NULL};
     ffc_nts_law l = {0.5, 0.4, 1e-12, 1e-9, 20, 2.0};
     f->p = q;
     f->law = l;
@@ -503,7 +503,7 @@ static void valley_init(valley *v)
     memcpy(v->Fm, Fm, sizeof Fm);
     memcpy(v->Fs, Fs, sizeof Fs);
     memset(v->u, 0, sizeof v->u);
-    const ffc_pair p = {3, 1, v->Fs, 3, 2, v->Fm, 9, v->X, v->u, NULL, NULL};
+    const ffc_pair p = {3, 1, v->Fs, 3, 2, v->Fm, 9, v->X, v->u, NULL, NULL, NULL};
     const ffc_nts_law law = {0, 0, 1e-12, 1e-9, 8, 1.0};
     v->p = p;
     v->law = law;
@@ -639,7 +639,7 @@ static void test_chattering_guard(void **state)
     long Fm[3] = {0, 1, 2}, Fs[3] = {3, 4, 5};
     double u[18];
     memset(u, 0, sizeof u);
-    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, NULL, NULL};
+    ffc_pair p = {3, 1, Fs, 3, 1, Fm, 6, X, u, NULL, NULL, NULL};
     ffc_nts_law law = {0, 0, 1e-12, 1e-9, 3, 1.0};
     ffc_nts_node nd[3];
     long need, nt, nr, Bi[64], Bj[64];

@@ -129,7 +129,7 @@ static void test_augment_shared_array(void **state)
     geometry(X, Fs0, Fm0, Fs1, Fm1);
     ffc_effects fx = {0, 0, 0};
     ffc_law law = {.eps_n = EPS, .nodal = 1};
-    ffc_pair p0 = {3, 2, Fs0, 3, 2, Fm0, NV, X, u, NULL, NULL}, p1 = {3, 2, Fs1, 3, 2, Fm1, NV, X, u, NULL, NULL};
+    ffc_pair p0 = {3, 2, Fs0, 3, 2, Fm0, NV, X, u, NULL, NULL, NULL}, p1 = {3, 2, Fs1, 3, 2, Fm1, NV, X, u, NULL, NULL, NULL};
     ffc_link L0[6], L1[6];
     ffc_tree *t0, *t1;
     assert_int_equal(ffc_tree_build(3, 2, Fm0, NV, X, &t0), FFC_OK);
