@@ -23,6 +23,23 @@ int ffc_obstacle_check(const ffc_obstacle *ob)
     return FFC_OK;
 }
 
+int ffc_obstacle_make(int kind, const double c[3], const double a[3], double r, int inside, ffc_obstacle *ob)
+{
+    if (!c || !ob || (kind != FFC_OBST_SPHERE && !a)) return FFC_ERR_NULL;
+    memset(ob, 0, sizeof *ob);
+    ob->kind = kind;
+    ob->r = kind == FFC_OBST_PLANE ? 0.0 : r;
+    ob->inside = inside;
+    for (int i = 0; i < 3; i++) ob->c[i] = c[i];
+    if (kind != FFC_OBST_SPHERE) {
+        if (!finite3(a)) return FFC_ERR_NONFINITE;
+        const double L = sqrt(ffc__dot(a, a));
+        if (!(L > 0)) return FFC_ERR_VALUE;
+        for (int i = 0; i < 3; i++) ob->a[i] = a[i] / L;
+    }
+    return ffc_obstacle_check(ob);
+}
+
 /* Formulation.  phi(x) = s (|d| - r) with d = P (x - c), P = I (sphere)
  * or I - a a^T (cylinder): grad phi = s P d / |d| = s d / |d| = n (P d =
  * d, P symmetric), and

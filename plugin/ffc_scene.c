@@ -371,8 +371,8 @@ static int pair_add(ffc_scene *s, long nfs, const long Fs[], long nfm, const lon
     if (!ob) memcpy(p->Fm, Fm, nfm * s->nper * sizeof *Fm);
     if (ob) {
         p->obst = 1;
-        p->ob = p->ob0 = *ob;
-        for (int i = 0; i < 3; i++) p->ob.d[i] = p->ob0.d[i] = 0.0;
+        p->ob = p->ob0 = p->base = *ob;
+        for (int i = 0; i < 3; i++) p->ob.d[i] = p->ob0.d[i] = p->base.d[i] = p->move[i] = 0.0;
     }
     {
         unsigned char *m = calloc(s->nv, 1);
@@ -411,7 +411,7 @@ void ffc__obstacle_motion(const ffc_scene *s, scene_pair *p)
     }
 }
 
-int ffc_scene_set_obstacle(ffc_scene *s, int k, const ffc_obstacle *ob)
+int ffc_scene_set_obstacle(ffc_scene *s, int k, const ffc_obstacle *ob, const double move[3])
 {
     if (!s || !ob) return FFC_ERR_NULL;
     if (k < 0 || k >= s->np) return FFC_ERR_INDEX;
@@ -419,8 +419,24 @@ int ffc_scene_set_obstacle(ffc_scene *s, int k, const ffc_obstacle *ob)
     int st = ffc_obstacle_check(ob);
     if (st) return st;
     if (!p->obst || ob->kind != p->ob.kind) return FFC_ERR_VALUE;
-    p->ob = *ob;
+    for (int i = 0; move && i < 3; i++)
+        if (!isfinite(move[i])) return FFC_ERR_NONFINITE;
+    p->ob = p->base = *ob;
+    for (int i = 0; i < 3; i++) p->move[i] = move ? move[i] : 0.0;
     ffc__obstacle_motion(s, p);
+    return FFC_OK;
+}
+
+int ffc_scene_obstacles_at(ffc_scene *s, double lf)
+{
+    if (!s) return FFC_ERR_NULL;
+    if (!isfinite(lf)) return FFC_ERR_NONFINITE;
+    for (int k = 0; k < s->np; k++) {
+        scene_pair *p = &s->p[k];
+        if (!p->obst) continue;
+        for (int i = 0; i < 3; i++) p->ob.c[i] = p->base.c[i] + lf * p->move[i];
+        ffc__obstacle_motion(s, p);
+    }
     return FFC_OK;
 }
 

@@ -35,6 +35,8 @@ typedef struct {
     int obst;
     ffc_obstacle ob, ob0; /* its placement now (ob.d: its motion since ob0, ffc__obstacle_motion),
                           and at the last commit */
+    ffc_obstacle base; /* its placement at load factor 0 */
+    double move[3];    /* its translation from there at load factor 1 (length) */
 } scene_pair;
 
 struct ffc_scene {

@@ -105,6 +105,14 @@ struct Named {
         return p ? *p : def;
     }
     KN<double> *array(int i) const { return e[i] ? GetAny<KN<double> *>((*e[i])(s)) : nullptr; }
+    const Expression (*vec)[3];   // the entries of a named [x, y, z] (a name of type E_Array)
+    // a named [x, y, z] into v; false when not named
+    bool vec3(int i, double v[3]) const
+    {
+        if (!e[i]) return false;
+        for (int k = 0; k < 3; k++) v[k] = GetAny<double>((*vec[i][k])(s));
+        return true;
+    }
     const char *name(int i) const { return names[i].name; }
 };
 
@@ -118,6 +126,7 @@ inline std::string type_word(aType t)
     if (t == atype<bool>()) return "bool";
     if (t == atype<string *>()) return "string";
     if (t == atype<KN<double> *>()) return "real[int]";
+    if (t == atype<E_Array>()) return "[x, y, z]";
     if (t == atype<KN<long> *>()) return "int[int]";
     return t->name();
 }
@@ -141,6 +150,7 @@ private:
         basicAC_F0::name_and_type *names;
         Expression a[sizeof...(A)];
         Expression nargs[MAXNAMED];
+        Expression vec[MAXNAMED][3];   // the entries of a named [x, y, z]
         Code(func ff, const char *fname, basicAC_F0::name_and_type *nm, int n, const basicAC_F0 &args,
              const Expression *e)
             : f(ff), fn(fname), names(nm)
@@ -148,11 +158,22 @@ private:
             for (size_t i = 0; i < sizeof...(A); i++) a[i] = e[i];
             for (int i = 0; i < MAXNAMED; i++) nargs[i] = nullptr;
             args.SetNameParam(n, names, nargs);
+            for (int i = 0; i < n; i++) {
+                if (!nargs[i] || *names[i].type != typeid(E_Array)) continue;
+                const E_Array *v = dynamic_cast<const E_Array *>(nargs[i]);
+                if (!v || v->size() != 3) {
+                    std::ostringstream s;
+                    s << fname << ": option '" << names[i].name << "' takes 3 values [x, y, z]" << (v ? ", not " : "");
+                    if (v) s << v->size();
+                    CompileError(s.str());
+                }
+                for (int k = 0; k < 3; k++) vec[i][k] = to<double>((*v)[k]);
+            }
         }
         template <size_t... I>
         AnyType call(Stack s, std::index_sequence<I...>) const
         {
-            Named nm{names, nargs, s, fn};
+            Named nm{names, nargs, s, fn, vec};
             return SetAny<R>(f(nm, GetAny<A>((*a[I])(s))...));
         }
         AnyType operator()(Stack s) const { return call(s, std::index_sequence_for<A...>()); }
@@ -258,6 +279,11 @@ void scene_motion(const char *fn, const Named &nm, SceneData &d, int iv, int idt
 // ffcSetPair) and those of an assembly (ffcAssemble), by position.
 enum { PO_METHOD, PO_MU, PO_EPSN, PO_EPST, PO_QDEG, PO_NODAL, PO_CREL, PO_CABS, PO_MUD, PO_GTOL, PO_FTOL, PO_FLIPS,
        PO_SCALE, PO_DUAL, PO_DUALT, PO_N };
+// a pair's options from the named arguments (indices PO_*), from o (ffcAddPair, ffcSetPair, ffcAddObstacle)
+ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &d, ffc_pair_opts o);
+// the facets of labels labs (argument arg) and the tetrahedron behind each; their count
+long select_facets(const char *fn, const SceneData &d, const char *arg, const KN<long> &labs, std::vector<long> &F,
+                   std::vector<long> &tet);
 enum { AS_TANGENT, AS_SYMMETRIC, AS_V, AS_DT, AS_DVDU, AS_N };
 extern basicAC_F0::name_and_type scene_names[], pair_names[], assemble_names[], motion_names[], pair_only_names[],
     stat_names[], points_names[], bulk_names[], newton_names[], full_names[], hyper_names[];
@@ -265,6 +291,16 @@ extern basicAC_F0::name_and_type scene_names[], pair_names[], assemble_names[], 
 // the calls of ffc_shim_scene.cpp
 FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh);
 long addPair(const Named &nm, FFScene *const &C, KN<long> *const &sl, KN<long> *const &ml);
+// a label list as text: {1, 2}
+std::string labels_text(const KN<long> &l);
+// ffc_shim_obstacle.cpp
+extern basicAC_F0::name_and_type obstacle_names[];
+void init_obstacle_names();
+long addObstacle(const Named &nm, FFScene *const &C, KN<long> *const &sl, string *const &shape);
+long addObstacleL(const Named &nm, FFScene *const &C, long const &s, string *const &shape);
+long moveObstacle(const Named &nm, FFScene *const &C, long const &k);
+long obstaclesAt(const Named &, FFScene *const &C, double const &lf);
+double obstacleValue(const Named &, FFScene *const &C, long const &k, string *const &what);
 long addPairL(const Named &nm, FFScene *const &C, long const &s, long const &m);
 long addPairLA(const Named &nm, FFScene *const &C, long const &s, KN<long> *const &M);
 long addPairAL(const Named &nm, FFScene *const &C, KN<long> *const &S, long const &m);

@@ -43,6 +43,8 @@ ffc_effects need_effects(const char *fn, long bits, const char *arg = "argument 
     return e;
 }
 
+} // namespace
+
 std::string labels_text(const KN<long> &l)
 {
     std::ostringstream s;
@@ -51,8 +53,6 @@ std::string labels_text(const KN<long> &l)
     s << "}";
     return s.str();
 }
-
-} // namespace
 
 // every entry of the array x (argument `name`) finite
 void need_finite(const char *fn, const char *name, KN<double> *x)
@@ -275,6 +275,8 @@ namespace {
 
 const char *method_name(int m) { return m == FFC_METHOD_NTS ? "nts" : m == FFC_METHOD_MORTAR ? "mortar" : "al"; }
 
+} // namespace
+
 ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &d, ffc_pair_opts o)
 {
     // a pair added without a method: the first pair's, or for the first
@@ -369,7 +371,34 @@ ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &
     return o;
 }
 
-} // namespace
+// The facets of the labels labs (argument arg), from the mesh as the scene
+// was made: F (nodes per facet: the scene's order), tet the tetrahedron
+// behind each; returns their count.
+long select_facets(const char *fn, const SceneData &d, const char *arg, const KN<long> &labs, std::vector<long> &F,
+                   std::vector<long> &tet)
+{
+    std::vector<long> L(labs.N()), out(3 * d.m.nbe);
+    for (long i = 0; i < labs.N(); i++) L[i] = labs[i];
+    long bad = -1;
+    int st = ffc_surface_select(3, d.m.nbe, d.m.be.data(), d.m.belab.data(), d.m.beopp.data(), d.m.nv, d.m.X.data(),
+                                (int)L.size(), L.data(), d.m.nbe, out.data(), &bad);
+    if (st < 0) {
+        std::ostringstream s;
+        if (st == FFC_ERR_LABEL)
+            s << "argument '" << arg << "': no boundary face carries label " << bad << "; labels present: " << labels_present(d.m);
+        else
+            s << "argument '" << arg << "': " << ffc_strerror(st) << " (face " << bad << ")";
+        fail(fn, s.str());
+    }
+    tet.resize(st);
+    for (long f = 0; f < (long)st; f++) tet[f] = d.m.betet[face_of(d.face, &out[3 * f])];
+    if (d.order == 2) {
+        F.resize(6 * (long)st);
+        p2_facets(fn, d.m, d.p2, d.face, st, out.data(), F.data());
+    } else
+        F.assign(out.begin(), out.begin() + 3 * (long)st);
+    return (long)st;
+}
 
 // ffcAddPair(C, slaveLabs, masterLabs, method = "al", mu = 0, epsN, epsT = 0,
 // qdeg = 4, nodal = 1, crel = 2, cabs = 0): returns the pair's index.
@@ -384,29 +413,8 @@ long addPair(const Named &nm, FFScene *const &C, KN<long> *const &sl, KN<long> *
         fail(fn, std::string("argument 'method': \"") + method_name(o.method) + "\": self-contact (the same labels " +
                      labels_text(S) + " on both sides) takes method \"al\"");
     o.search.self = self;
-    // the facets, from the mesh as the scene was made
     auto select = [&](const char *arg, const KN<long> &labs, std::vector<long> &F, std::vector<long> &tet) {
-        std::vector<long> L(labs.N()), out(3 * d.m.nbe);
-        for (long i = 0; i < labs.N(); i++) L[i] = labs[i];
-        long bad = -1;
-        int st = ffc_surface_select(3, d.m.nbe, d.m.be.data(), d.m.belab.data(), d.m.beopp.data(), d.m.nv,
-                                    d.m.X.data(), (int)L.size(), L.data(), d.m.nbe, out.data(), &bad);
-        if (st < 0) {
-            std::ostringstream s;
-            if (st == FFC_ERR_LABEL)
-                s << "argument '" << arg << "': no boundary face carries label " << bad << "; labels present: " << labels_present(d.m);
-            else
-                s << "argument '" << arg << "': " << ffc_strerror(st) << " (face " << bad << ")";
-            fail(fn, s.str());
-        }
-        tet.resize(st);
-        for (long f = 0; f < (long)st; f++) tet[f] = d.m.betet[face_of(d.face, &out[3 * f])];
-        if (d.order == 2) {
-            F.resize(6 * (long)st);
-            p2_facets(fn, d.m, d.p2, d.face, st, out.data(), F.data());
-        } else
-            F.assign(out.begin(), out.begin() + 3 * (long)st);
-        return (long)st;
+        return select_facets(fn, d, arg, labs, F, tet);
     };
     std::vector<long> Fs, Fm, tS, tM;
     long nfs, nfm;
@@ -519,6 +527,10 @@ double pairOption(const Named &, FFScene *const &C, long const &k, string *const
     if (n == "nts") return o.method == FFC_METHOD_NTS;
     if (n == "mortar") return o.method == FFC_METHOD_MORTAR;
     if (n == "self") return o.search.self;
+    if (n == "obstacle") {
+        ffc_obstacle ob;
+        return ffc_scene_obstacle(d.s, p, &ob) == FFC_OK;
+    }
     if (n == "dual") return o.dual;
     if (n == "dualT") return o.dual_t;
     if (n == "muD") return o.mu_d;
@@ -529,7 +541,7 @@ double pairOption(const Named &, FFScene *const &C, long const &k, string *const
     if (n == "method")
         fail(fn, "argument 'name': \"method\" is a string and ffcOption returns numbers: read it as ffcOption(C, k, \"nts\") "
                  "(1: node-to-surface) and ffcOption(C, k, \"mortar\") (1: mortar), both 0 for the augmented Lagrangian");
-    fail(fn, "argument 'name': \"" + n + "\" is not an option of a pair (mu, epsN, epsT, qdeg, nodal, crel, cabs, nts, mortar, self, dual, dualT, muD, gtol, "
+    fail(fn, "argument 'name': \"" + n + "\" is not an option of a pair (mu, epsN, epsT, qdeg, nodal, crel, cabs, nts, mortar, self, obstacle, dual, dualT, muD, gtol, "
                 "ftol, maxFlips, scale)");
 }
 

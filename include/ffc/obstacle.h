@@ -46,6 +46,12 @@ typedef struct {
  * FFC_ERR_NONFINITE, FFC_ERR_NULL. */
 int ffc_obstacle_check(const ffc_obstacle *ob);
 
+/* An obstacle of kind (FFC_OBST_*) from a point c[3], a direction a[3]
+ * (the plane's normal toward the body, the cylinder's axis; NULL for a
+ * sphere) scaled here to unit length, radius r and inside: *ob, motion d
+ * zero; ffc_obstacle_check's status, FFC_ERR_VALUE for a zero direction. */
+int ffc_obstacle_make(int kind, const double c[3], const double a[3], double r, int inside, ffc_obstacle *ob);
+
 /* The gap g, normal n[3] and H[3][3] = dn/dx at point x[3] (H may be
  * NULL).  FFC_ERR_DEGENERATE on a sphere's centre or a cylinder's axis
  * (no normal there). */

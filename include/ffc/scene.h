@@ -136,14 +136,17 @@ int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const 
  * facet's size. */
 int ffc_scene_add_obstacle(ffc_scene *s, long nfs, const long Fs[], const ffc_obstacle *ob, const ffc_pair_opts *o,
                            long *bad);
-/* Places obstacle pair k's obstacle (the same kind; ob->d ignored): its
- * motion since the last commit (ffc_scene_commit) is c - c at the commit,
- * divided by dt in a dynamic scene: the velocity its surface has for
- * friction (a translation: a turn of the shape gives its surface no
- * velocity).  FFC_ERR_VALUE for a pair without an obstacle or another
- * kind; ffc_obstacle_check's errors.  ffc_scene_obstacle reads it back,
- * with the motion in d. */
-int ffc_scene_set_obstacle(ffc_scene *s, int k, const ffc_obstacle *ob);
+/* Places obstacle pair k's obstacle (the same kind; ob->d ignored) at
+ * load factor 0, and its path: at load factor lf
+ * (ffc_scene_obstacles_at) its centre (point) is ob->c + lf move[3]
+ * (move NULL: it stays).  Its motion since the last commit
+ * (ffc_scene_commit) is c - c at the commit, divided by dt in a dynamic
+ * scene: the velocity its surface has for friction (a translation: a turn
+ * of the shape gives its surface no velocity).  FFC_ERR_VALUE for a pair
+ * without an obstacle or another kind; ffc_obstacle_check's errors.
+ * ffc_scene_obstacle reads the placement back, with the motion in d. */
+int ffc_scene_set_obstacle(ffc_scene *s, int k, const ffc_obstacle *ob, const double move[3]);
+int ffc_scene_obstacles_at(ffc_scene *s, double lf);
 int ffc_scene_obstacle(const ffc_scene *s, int k, ffc_obstacle *ob);
 
 /* Options of pair k, and their change (a new qdeg or nodal setting
