@@ -7,14 +7,16 @@
 // is meshed with size hs, the die is structured: arc intervals of about hd,
 // one element through the thickness, layers of about hd along y.
 //   gmsh -3 -format msh2 -setnumber hs 0.5 ironing.geo
-// (-setnumber ext e: the slab [-e, 9 + e] x [0,2] x [0,3], the die where it was)
+// (-setnumber ext e: the slab [-e, 9 + e] x [0,2] x [0,3], the die where it was;
+//  -setnumber die 0: the slab alone, for a rigid die given by its shape)
 SetFactory("OpenCASCADE");
-DefineConstant[ hs = 0.5, hd = 0.25, ext = 0 ];
+DefineConstant[ hs = 0.5, hd = 0.25, ext = 0, die = 1 ];
 Mesh.MshFileVersion = 2.2;
 e = 1e-6;
 Box(1) = {-ext, 0, 0, 9 + 2 * ext, 2, 3};   // ext > 0: the slab lengthened at both ends
 
 cx = 2.5; cz = 6; R = 3; t = 0.2; th = 75 * Pi / 180; y0 = -0.6; w = 2.6;
+If (die)
 Point(101) = {cx, y0, cz};
 Point(102) = {cx - R * Sin(th), y0, cz - R * Cos(th)};
 Point(103) = {cx + R * Sin(th), y0, cz - R * Cos(th)};
@@ -33,6 +35,7 @@ Transfinite Surface{101};
 die[] = Extrude {0, w, 0} { Surface{101}; Layers{ Ceil(w / hd) }; };
 // die[0]: the face y = 2, die[1]: the volume, die[2..5]: the faces swept by
 // curves 101 (outer), 102, 103 (inner), 104
+EndIf
 
 Mesh.MeshSizeFromPoints = 0;
 Mesh.MeshSizeExtendFromBoundary = 0;
@@ -43,7 +46,6 @@ Field[2].VolumesList = {1}; Field[2].SurfacesList = {1:6}; Field[2].CurvesList =
 Background Field = 2;
 
 Physical Volume("slab", 1) = {1};
-Physical Volume("die", 2) = {die[1]};
 // slab faces (OpenCASCADE box order: x=0, x=9, y=0, y=2, z=0, z=3)
 Physical Surface("slab_x0", 1) = {1};
 Physical Surface("slab_x9", 2) = {2};
@@ -51,7 +53,10 @@ Physical Surface("slab_y0", 3) = {3};
 Physical Surface("slab_sym", 4) = {4};
 Physical Surface("slab_bottom", 5) = {5};
 Physical Surface("slab_top", 6) = {6};
+If (die)
+Physical Volume("die", 2) = {die[1]};
 Physical Surface("die_contact", 11) = {die[2]};
 Physical Surface("die_top", 12) = {die[4]};
 Physical Surface("die_sym", 13) = {die[0]};
 Physical Surface("die_sides", 14) = {101, die[3], die[5]};
+EndIf
