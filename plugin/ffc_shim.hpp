@@ -291,6 +291,7 @@ extern basicAC_F0::name_and_type scene_names[], pair_names[], assemble_names[], 
 // the calls of ffc_shim_scene.cpp
 FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh);
 long addPair(const Named &nm, FFScene *const &C, KN<long> *const &sl, KN<long> *const &ml);
+long sceneSelfPassed(const Named &, FFScene *const &C, KN<double> *const &u);
 // a label list as text: {1, 2}
 std::string labels_text(const KN<long> &l);
 // ffc_shim_obstacle.cpp

@@ -389,6 +389,19 @@ long sceneInverted(const Named &, FFScene *const &C, KN<double> *const &u)
     return ffc_scene_check_volume(d.s, need_scene_u(fn, d, u), &bad) == FFC_ERR_INVERTED ? bad : -1;
 }
 
+// ffcSelfPassed(C, u): the points of self pairs that crossed an opposite
+// facet of their own surface since the last commit (ffc_scene_self_passed);
+// 0 without self pairs.
+long sceneSelfPassed(const Named &, FFScene *const &C, KN<double> *const &u)
+{
+    const char *fn = "ffcSelfPassed";
+    SceneData &d = need_scene(fn, C);
+    long bad = -1, n = 0;
+    int st = ffc_scene_self_passed(d.s, need_scene_u(fn, d, u), &n, &bad);
+    if (st) scene_error(fn, st, bad, "the pass-through check");
+    return n;
+}
+
 // ffcSurfaceDofs(C, mask): mask = 1 on the dofs of every node of the
 // pairs' facets (slave and master sides), 0 elsewhere (resized to the
 // scene's dofs). Returns the number of such nodes.

@@ -149,6 +149,15 @@ int ffc_scene_set_obstacle(ffc_scene *s, int k, const ffc_obstacle *ob, const do
 int ffc_scene_obstacles_at(ffc_scene *s, double lf);
 int ffc_scene_obstacle(const ffc_scene *s, int k, ffc_obstacle *ob);
 
+/* Self pairs (search.self): the slave points that crossed an opposite
+ * facet of their own surface since the last commit, in one step: a point
+ * behind a facet at u by more than the pair's capture distance (which
+ * the search does not see: the contact cannot push it back) that was on
+ * the facet's open side at the commit.  *n their count (0: none, or no
+ * self pair); a step with *n > 0 passed a fold through itself and is to be
+ * cut. */
+int ffc_scene_self_passed(ffc_scene *s, const double u[], long *n, long *bad);
+
 /* Options of pair k, and their change (a new qdeg or nodal setting
  * resets that pair's links and multipliers). */
 int ffc_scene_pair_opts(const ffc_scene *s, int k, ffc_pair_opts *o);

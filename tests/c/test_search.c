@@ -691,6 +691,45 @@ static void test_self(void **state)
     surf_free(&c);
 }
 
+/* The pass-through check of a self pair (ffc_scene_self_passed): the
+ * hairpin's upper sheet moved down through the lower one by more than the
+ * capture distance in one step is caught (its points behind the lower
+ * facets, on their open side at the commit); moved down within the gap,
+ * or the whole hairpin moved far as one, nothing is. */
+static void test_self_passed(void **state)
+{
+    (void)state;
+    const double g = 0.05, arc = 3.14159265358979323846 * 0.5 * g, len = 2.0 + arc;
+    surf_t h = make_grid(3, 42, 6, 0.0, 0.0, len, 0.3, z_flat, 0.0, 1, 1);
+    map_hairpin(&h, g);
+    ffc_effects fx = {0, 0, 0};
+    ffc_scene *s;
+    assert_int_equal(ffc_scene_create(3, h.nv, h.x, 0, NULL, &fx, &s), FFC_OK);
+    ffc_pair_opts o = ffc_pair_defaults();
+    o.search.self = 1;
+    long bad, n;
+    assert_int_equal(ffc_scene_add_pair(s, h.nf, h.F, h.nf, h.F, &o, &bad), 0);
+    double *u = calloc(3 * (size_t)h.nv, sizeof *u);
+    assert_int_equal(ffc_scene_commit(s, u), FFC_OK);
+    assert_int_equal(ffc_scene_self_passed(s, u, &n, &bad), FFC_OK);
+    assert_int_equal(n, 0);
+    const double drop[3] = {0.02, 0.5, 0.0};   /* within the gap; through it, far; none (the rigid move below) */
+    const long want[3] = {0, 1, 0};
+    for (int c = 0; c < 3; c++) {
+        for (long i = 0; i < h.nv; i++) {
+            const int upper = h.x[3 * i + 2] > 0.99 * g && h.x[3 * i] < 0.9;
+            for (int j = 0; j < 3; j++) u[3 * i + j] = c == 2 ? (j == 0 ? 1.0 : j == 2 ? -0.7 : 0.0) : 0.0;
+            if (upper) u[3 * i + 2] -= drop[c];
+        }
+        assert_int_equal(ffc_scene_self_passed(s, u, &n, &bad), FFC_OK);
+        if (want[c]) assert_true(n > 100);
+        else assert_int_equal(n, 0);
+    }
+    free(u);
+    ffc_scene_free(s);
+    surf_free(&h);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -705,6 +744,7 @@ int main(void)
         cmocka_unit_test(test_degenerate_facet),
         cmocka_unit_test(test_extreme_units),
         cmocka_unit_test(test_self),
+        cmocka_unit_test(test_self_passed),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
