@@ -43,6 +43,15 @@ static void facet_normal(const double X[3][3], double n[3])
     ffc__cross(a, b, n);
 }
 
+/* two facets sharing a corner vertex */
+static int share_corner(const long a[], const long b[])
+{
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            if (a[i] == b[j]) return 1;
+    return 0;
+}
+
 #define MORTAR_PTS 96   /* points of one segment: <= 4 triangles x 12 (degree 6) */
 #define MORTAR_CAND 4096 /* master facets overlapping one slave facet's box */
 
@@ -92,6 +101,10 @@ int ffc_mortar_pairs(const ffc_tree *t, long nfs, const long Fs[], long nvs, con
                 }
             facet_normal(Xm, nm);
             if (!(ffc__dot(ns, nm) < 0)) continue; /* not facing */
+            /* self-contact (the slave facets are the tree's, in the same order):
+               each two facing facets once, from the one of lower index, and
+               none sharing a corner with the slave facet (ffc_search_opts) */
+            if (o->self && (mf <= f || share_corner(Fs + nn * f, t->F + nn * mf))) continue;
             double cov;
             /* (degree 1: one point per segment triangle, enough for its centre) */
             const int np = ffc_mortar_segment(1, (const double(*)[3])Xs, (const double(*)[3])Xm, MORTAR_PTS, xi, w, 0,

@@ -49,7 +49,7 @@ int ffc_pair_opts_check(const ffc_pair_opts *o)
     if (!finite_nonneg(o->search.capture_rel) || !finite_nonneg(o->search.capture_abs) ||
         !finite_nonneg(o->search.edge_tol) || (o->search.self != 0 && o->search.self != 1))
         return FFC_ERR_VALUE;
-    if (o->search.self && o->method != FFC_METHOD_AL) return FFC_ERR_VALUE; /* (ffc_search's exclusions) */
+    if (o->search.self && o->method == FFC_METHOD_NTS) return FFC_ERR_VALUE; /* (the searches' exclusions: ffc_search, ffc_mortar_pairs) */
     return FFC_OK;
 }
 

@@ -409,9 +409,9 @@ long addPair(const Named &nm, FFScene *const &C, KN<long> *const &sl, KN<long> *
     KN<long> S = side_labels(fn, "slaveLabs", sl), M = side_labels(fn, "masterLabs", ml);
     const bool self = need_pair_labels(fn, &S, &M);
     ffc_pair_opts o = named_pair_opts(fn, nm, d, ffc_pair_defaults());
-    if (self && o.method != FFC_METHOD_AL)
+    if (self && o.method == FFC_METHOD_NTS)
         fail(fn, std::string("argument 'method': \"") + method_name(o.method) + "\": self-contact (the same labels " +
-                     labels_text(S) + " on both sides) takes method \"al\"");
+                     labels_text(S) + " on both sides) takes method \"al\" or \"mortar\"");
     o.search.self = self;
     auto select = [&](const char *arg, const KN<long> &labs, std::vector<long> &F, std::vector<long> &tet) {
         return select_facets(fn, d, arg, labs, F, tet);

@@ -77,7 +77,10 @@ int ffc_mortar_search(const ffc_tree *t, long nfs, const long Fs[], long nvs, co
 /* The facet pairs of ffc_mortar_search (slave facets Fs[nfs*nn], nn the
  * tree's nodes per facet): pairs[2 k] the slave facet,
  * pairs[2 k + 1] the master facet of pair k (cap pairs at most; *need the
- * count).  Returns the count or an error (FFC_ERR_CAPACITY). */
+ * count).  Returns the count or an error (FFC_ERR_CAPACITY).  With
+ * o->self (the slave facets are the tree's, in the same order): no pair
+ * of a facet with itself, with one of lower index or with one sharing a
+ * corner vertex. */
 int ffc_mortar_pairs(const ffc_tree *t, long nfs, const long Fs[], long nvs, const double x[],
                      const ffc_search_opts *o, long cap, long pairs[], long *need);
 

@@ -121,8 +121,8 @@ int ffc_scene_effects(const ffc_scene *s, ffc_effects *fx);
  * = a facet that two of the scene's tetrahedra share, so that the bodies
  * on its two sides are one mesh there: a slave facet f as f, a master
  * facet f as nfs + f).  Self-contact (o->search.self = 1): Fs and Fm are
- * the same facets and the method the augmented Lagrangian (FFC_ERR_VALUE
- * otherwise); each point's own facet, the facets sharing a vertex with it
+ * the same facets and the method the augmented Lagrangian or mortar
+ * (FFC_ERR_VALUE for node-to-surface); each point's own facet, the facets sharing a vertex with it
  * and those not facing it are no partners (ffc_search_opts). */
 int ffc_scene_add_pair(ffc_scene *s, long nfs, const long Fs[], long nfm, const long Fm[],
                        const ffc_pair_opts *o, long *bad);

@@ -36,7 +36,8 @@ typedef struct {
                             facing facets once: one pass), that shares no
                             vertex with its own facet and whose normal
                             opposes its facet's (n_m . n_s < 0; not where
-                            the surface merely curves); 0: surfaces apart */
+                            the surface merely curves); ffc_mortar_pairs
+                            alike, facet by facet; 0: surfaces apart */
 } ffc_search_opts;
 
 /* Defaults: capture_rel 2, capture_abs 0, edge_tol 1e-9, self 0. */

@@ -615,6 +615,16 @@ static void map_hairpin(surf_t *s, double g)
         else { x[0] = 1.0 - (t - 1.0 - arc); x[2] = g; }
     }
 }
+/* a sheet folded at x = 1 into a V of opening angle a (the part x > 1
+ * turned back over the rest): the facets next to the crease face each
+ * other and share its vertices */
+static void map_vfold(surf_t *s, double a)
+{
+    for (long i = 0; i < s->nv; i++) {
+        double *x = s->x + 3 * i, t = x[0];
+        if (t > 1.0) { x[0] = 1.0 - (t - 1.0) * cos(a); x[2] = (t - 1.0) * sin(a); }
+    }
+}
 static void map_quarter(surf_t *s, double R)
 {
     for (long i = 0; i < s->nv; i++) {
@@ -674,7 +684,58 @@ static void test_self(void **state)
         for (long j = 0; j < nl; j++) assert_false(L[j].sf == L[k].mf && L[j].mf == L[k].sf);
     }
     free(L); free(B);
+    /* the mortar pairing alike (ffc_mortar_pairs with o.self): every pair
+     * from the facet of lower index, facing, sharing no corner; each facet
+     * of the lower sheet away from the fold paired */
+    long need = 0;
+    assert_int_equal(ffc_mortar_pairs(t, h.nf, h.F, h.nv, h.x, &o, 0, NULL, &need), FFC_ERR_CAPACITY);
+    long *mp = malloc(2 * (size_t)need * sizeof *mp);
+    assert_int_equal(ffc_mortar_pairs(t, h.nf, h.F, h.nv, h.x, &o, need, mp, &need), (int)need);
+    unsigned char *paired = calloc((size_t)h.nf, 1);
+    for (long k = 0; k < need; k++) {
+        const long sf = mp[2 * k], mf = mp[2 * k + 1];
+        assert_true(mf > sf);
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) assert_true(h.F[3 * sf + a] != h.F[3 * mf + b]);
+        double ns[3], nm[3];
+        facet_normal(&h, sf, ns);
+        facet_normal(&h, mf, nm);
+        assert_true(ns[0] * nm[0] + ns[1] * nm[1] + ns[2] * nm[2] < 0);
+        paired[sf] = 1;
+    }
+    long lowerFacets = 0;
+    for (long f = 0; f < h.nf; f++) {
+        double c[3] = {0, 0, 0};
+        for (int a = 0; a < 3; a++)
+            for (int i = 0; i < 3; i++) c[i] += h.x[3 * h.F[3 * f + a] + i] / 3;
+        if (c[2] == 0.0 && c[0] < 0.9) { assert_true(paired[f]); lowerFacets++; }
+    }
+    assert_true(lowerFacets >= 18 * 6 * 2);
+    free(mp); free(paired);
     ffc_tree_free(t);
+    /* a V fold of 30 degrees: the facets at the crease face each other
+     * across it, but share its vertices: no link and no mortar pair
+     * between two facets sharing a corner (the neighbour rule), while the
+     * sheets away from the crease link */
+    surf_t v = make_grid(3, 20, 4, 0.0, 0.0, 2.0, 0.2, z_flat, 0.0, 1, 3);
+    map_vfold(&v, 30.0 * 3.14159265358979323846 / 180.0);
+    assert_int_equal(ffc_tree_build(3, v.nf, v.F, v.nv, v.x, &t), FFC_OK);
+    const long nvl = v.nf * nq;
+    L = malloc(nvl * sizeof *L);
+    const int vfound = ffc_search(t, 3, v.nf, v.F, v.nv, v.x, qdeg, &o, nvl, L);
+    assert_true(vfound > 0);
+    assert_int_equal(ffc_mortar_pairs(t, v.nf, v.F, v.nv, v.x, &o, 0, NULL, &need), FFC_ERR_CAPACITY);
+    mp = malloc(2 * (size_t)need * sizeof *mp);
+    assert_int_equal(ffc_mortar_pairs(t, v.nf, v.F, v.nv, v.x, &o, need, mp, &need), (int)need);
+    for (long k = 0; k < nvl + need; k++) {
+        const long sf = k < nvl ? L[k].sf : mp[2 * (k - nvl)], mf = k < nvl ? L[k].mf : mp[2 * (k - nvl) + 1];
+        if (mf < 0) continue;
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) assert_true(v.F[3 * sf + a] != v.F[3 * mf + b]);
+    }
+    free(L); free(mp);
+    ffc_tree_free(t);
+    surf_free(&v);
     /* merely curved: no partner anywhere */
     surf_t c = make_grid(3, 16, 4, 0.0, 0.0, 0.5 * 3.14159265358979323846 * 0.2, 0.2, z_flat, 0.2, 1, 2);
     map_quarter(&c, 0.2);
@@ -682,6 +743,7 @@ static void test_self(void **state)
     const long ncl = c.nf * nq;
     L = malloc(ncl * sizeof *L);
     assert_int_equal(ffc_search(t, 3, c.nf, c.F, c.nv, c.x, qdeg, &o, ncl, L), 0);
+    assert_int_equal(ffc_mortar_pairs(t, c.nf, c.F, c.nv, c.x, &o, 0, NULL, &need), 0);
     o.self = 0;
     assert_int_equal(ffc_search(t, 3, c.nf, c.F, c.nv, c.x, qdeg, &o, ncl, L), ncl);
     for (long k = 0; k < ncl; k++) assert_close(L[k].gap, 0.0, 1e-12);
