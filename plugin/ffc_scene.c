@@ -440,6 +440,15 @@ int ffc_scene_obstacles_at(ffc_scene *s, double lf)
     return FFC_OK;
 }
 
+int ffc_scene_obstacle_path(const ffc_scene *s, int k, double move[3])
+{
+    if (!s || !move) return FFC_ERR_NULL;
+    if (k < 0 || k >= s->np) return FFC_ERR_INDEX;
+    if (!s->p[k].obst) return FFC_ERR_VALUE;
+    for (int i = 0; i < 3; i++) move[i] = s->p[k].move[i];
+    return FFC_OK;
+}
+
 int ffc_scene_obstacle(const ffc_scene *s, int k, ffc_obstacle *ob)
 {
     if (!s || !ob) return FFC_ERR_NULL;

@@ -161,7 +161,8 @@ long obstaclesAt(const Named &, FFScene *const &C, double const &lf)
 }
 
 // ffcObstacle(C, k, what): pair k's obstacle now: "x", "y", "z" (centre or
-// point), "radius", "nx", "ny", "nz" (normal or axis).
+// point), "radius", "nx", "ny", "nz" (normal or axis), "move" (the length of
+// its path's move), "mx", "my", "mz" (the move).
 double obstacleValue(const Named &, FFScene *const &C, long const &k, string *const &what)
 {
     const char *fn = "ffcObstacle";
@@ -177,7 +178,17 @@ double obstacleValue(const Named &, FFScene *const &C, long const &k, string *co
     if (w == "x" || w == "y" || w == "z") return ob.c[w[0] - 'x'];
     if (w == "nx" || w == "ny" || w == "nz") return ob.a[w[1] - 'x'];
     if (w == "radius") return ob.r;
-    fail(fn, "argument 'what': \"" + w + "\" is not x, y, z, radius, nx, ny or nz");
+    if (w == "mx" || w == "my" || w == "mz") {
+        double m[3];
+        ffc_scene_obstacle_path(d.s, p, m);
+        return m[w[1] - 'x'];
+    }
+    if (w == "move") {
+        double m[3];
+        ffc_scene_obstacle_path(d.s, p, m);
+        return std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+    }
+    fail(fn, "argument 'what': \"" + w + "\" is not x, y, z, radius, nx, ny, nz, move, mx, my or mz");
 }
 
 } // namespace ffc_shim

@@ -148,6 +148,8 @@ int ffc_scene_add_obstacle(ffc_scene *s, long nfs, const long Fs[], const ffc_ob
 int ffc_scene_set_obstacle(ffc_scene *s, int k, const ffc_obstacle *ob, const double move[3]);
 int ffc_scene_obstacles_at(ffc_scene *s, double lf);
 int ffc_scene_obstacle(const ffc_scene *s, int k, ffc_obstacle *ob);
+/* Obstacle pair k's path: move[3] (length), as ffc_scene_set_obstacle set it. */
+int ffc_scene_obstacle_path(const ffc_scene *s, int k, double move[3]);
 
 /* Self pairs (search.self): the slave points that crossed an opposite
  * facet of their own surface since the last commit, in one step: a point
