@@ -203,6 +203,7 @@ public:
                 const aType want = map_type[names[i].type->name()];
                 if (!want->CastingFrom(kv.second.left())) {
                     s << "option '" << kv.first << "' takes a " << type_word(want) << " value";
+                    if (want == atype<E_Array>()) s << " (its values written out: from an array c, [c[0], c[1], c[2]])";
                     CompileError(s.str());
                 }
             }
