@@ -255,4 +255,34 @@ static inline void test_lattice_pair_sets(int ln, long rows[], long nd1[LATTICE_
     for (long k = 0; k < LATTICE_C2; k++) nd2[k] += n1;
 }
 
+/* Central differences of one link's residual against its tangent K[nd][nd]:
+ * coordinate l is *x[l] (and *m[l] moves with it when m is not NULL: a
+ * friction motion x - x^n), moved by +-h; eval(ctx, st, R) evaluates the
+ * residual; the states at +-h must keep st0's contact and friction state.
+ * *err the largest |FD - K|, *scale the largest |K|. */
+typedef int (*test_link_eval)(void *ctx, ffc_link_state *st, double R[FFC_MAXDOF]);
+static inline void test_link_fd(int nd, double *x[], double *m[], double h, test_link_eval eval, void *ctx,
+                                const ffc_link_state *st0, double K[FFC_MAXDOF][FFC_MAXDOF], double *err, double *scale)
+{
+    *err = 0;
+    *scale = 0;
+    for (int l = 0; l < nd; l++) {
+        double x0 = *x[l], m0 = m ? *m[l] : 0.0, Rp[FFC_MAXDOF], Rm[FFC_MAXDOF];
+        ffc_link_state sp, sm;
+        *x[l] = x0 + h; if (m) *m[l] = m0 + h;
+        assert_int_equal(eval(ctx, &sp, Rp), FFC_OK);
+        *x[l] = x0 - h; if (m) *m[l] = m0 - h;
+        assert_int_equal(eval(ctx, &sm, Rm), FFC_OK);
+        *x[l] = x0; if (m) *m[l] = m0;
+        assert_int_equal(sp.active, st0->active);
+        assert_int_equal(sm.active, st0->active);
+        assert_int_equal(sp.fstate, st0->fstate);
+        assert_int_equal(sm.fstate, st0->fstate);
+        for (int k = 0; k < nd; k++) {
+            *err = fmax(*err, fabs((Rp[k] - Rm[k]) / (2 * h) - K[k][l]));
+            *scale = fmax(*scale, fabs(K[k][l]));
+        }
+    }
+}
+
 #endif

@@ -97,6 +97,8 @@ static int oc_eval(const ocase *c, ffc_link_state *st, double R[FFC_MAXDOF], dou
                              (const double(*)[3])c->Ds, c->xs, c->w, &c->ob, c->lambda, c->lam_t, &c->law, st, R, K);
 }
 
+static int oc_eval_r(void *c, ffc_link_state *st, double R[FFC_MAXDOF]) { return oc_eval(c, st, R, NULL); }
+
 /* A slave facet (normal toward the obstacle) whose point sits at gap
  * `offset` from the obstacle's surface, near the point x0 of it. */
 static void oc_make(ocase *c, int ns, const ffc_obstacle *ob, int finite, double offset, uint64_t *s)
@@ -140,22 +142,9 @@ static double oc_fd(ocase *c, int want_state)
     assert_int_equal(oc_eval(c, &st, R, K), FFC_OK);
     if (want_state >= 0) assert_int_equal(st.fstate, want_state);
     const int nd = 3 * c->ns;
-    const double h = 1e-6;
-    double err = 0, scale = 0;
-    for (int l = 0; l < nd; l++) {
-        double *x = &c->Xs[l / 3][l % 3], *m = &c->Ds[l / 3][l % 3], x0 = *x, m0 = *m;
-        double Rp[FFC_MAXDOF], Rm[FFC_MAXDOF];
-        ffc_link_state sp, sm;
-        *x = x0 + h; *m = m0 + h; assert_int_equal(oc_eval(c, &sp, Rp, NULL), FFC_OK);
-        *x = x0 - h; *m = m0 - h; assert_int_equal(oc_eval(c, &sm, Rm, NULL), FFC_OK);
-        *x = x0; *m = m0;
-        assert_int_equal(sp.fstate, st.fstate);
-        assert_int_equal(sm.fstate, st.fstate);
-        for (int k = 0; k < nd; k++) {
-            err = fmax(err, fabs((Rp[k] - Rm[k]) / (2 * h) - K[k][l]));
-            scale = fmax(scale, fabs(K[k][l]));
-        }
-    }
+    double *x[FFC_MAXDOF], *m[FFC_MAXDOF], err, scale;
+    for (int l = 0; l < nd; l++) { x[l] = &c->Xs[l / 3][l % 3]; m[l] = &c->Ds[l / 3][l % 3]; }
+    test_link_fd(nd, x, m, 1e-6, oc_eval_r, c, &st, K, &err, &scale);
     if (!st.active) {
         assert_true(scale == 0.0 && err == 0.0);
         return 0.0;

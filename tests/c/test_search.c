@@ -640,6 +640,16 @@ static void facet_normal(const surf_t *s, long f, double n[3])
     for (int i = 0; i < 3; i++) { e1[i] = b[i] - a[i]; e2[i] = c[i] - a[i]; }
     n[0] = e1[1] * e2[2] - e1[2] * e2[1]; n[1] = e1[2] * e2[0] - e1[0] * e2[2]; n[2] = e1[0] * e2[1] - e1[1] * e2[0];
 }
+/* a self partner: facets sf and mf share no corner and face each other */
+static void check_self_partner(const surf_t *h, long sf, long mf)
+{
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) assert_true(h->F[3 * sf + a] != h->F[3 * mf + b]);
+    double ns[3], nm[3];
+    facet_normal(h, sf, ns);
+    facet_normal(h, mf, nm);
+    assert_true(ns[0] * nm[0] + ns[1] * nm[1] + ns[2] * nm[2] < 0);
+}
 static void test_self(void **state)
 {
     (void)state;
@@ -666,14 +676,7 @@ static void test_self(void **state)
             assert_close(L[k].n[2], -1.0, 1e-12);
             lower++;
         }
-        if (L[k].mf < 0) continue;
-        const long sf = L[k].sf, mf = L[k].mf;
-        for (int a = 0; a < 3; a++)
-            for (int b = 0; b < 3; b++) assert_true(h.F[3 * sf + a] != h.F[3 * mf + b]);
-        double ns[3], nm[3];
-        facet_normal(&h, sf, ns);
-        facet_normal(&h, mf, nm);
-        assert_true(ns[0] * nm[0] + ns[1] * nm[1] + ns[2] * nm[2] < 0);
+        if (L[k].mf >= 0) check_self_partner(&h, L[k].sf, L[k].mf);
     }
     assert_true(lower >= 20 * 6 * 2 * nq * 9 / 10);   /* (18 of the 20 cells along x, every point in them) */
     /* one pass: a link goes from the facet of lower index to the other,
@@ -695,12 +698,7 @@ static void test_self(void **state)
     for (long k = 0; k < need; k++) {
         const long sf = mp[2 * k], mf = mp[2 * k + 1];
         assert_true(mf > sf);
-        for (int a = 0; a < 3; a++)
-            for (int b = 0; b < 3; b++) assert_true(h.F[3 * sf + a] != h.F[3 * mf + b]);
-        double ns[3], nm[3];
-        facet_normal(&h, sf, ns);
-        facet_normal(&h, mf, nm);
-        assert_true(ns[0] * nm[0] + ns[1] * nm[1] + ns[2] * nm[2] < 0);
+        check_self_partner(&h, sf, mf);
         paired[sf] = 1;
     }
     long lowerFacets = 0;
@@ -729,9 +727,7 @@ static void test_self(void **state)
     assert_int_equal(ffc_mortar_pairs(t, v.nf, v.F, v.nv, v.x, &o, need, mp, &need), (int)need);
     for (long k = 0; k < nvl + need; k++) {
         const long sf = k < nvl ? L[k].sf : mp[2 * (k - nvl)], mf = k < nvl ? L[k].mf : mp[2 * (k - nvl) + 1];
-        if (mf < 0) continue;
-        for (int a = 0; a < 3; a++)
-            for (int b = 0; b < 3; b++) assert_true(v.F[3 * sf + a] != v.F[3 * mf + b]);
+        if (mf >= 0) check_self_partner(&v, sf, mf);
     }
     free(L); free(mp);
     ffc_tree_free(t);
