@@ -75,6 +75,33 @@ int ffc_obstacle_gap(const ffc_obstacle *ob, const double x[3], double *g, doubl
     return FFC_OK;
 }
 
+long ffc_obstacle_facing(const ffc_obstacle *ob, int nn, long nf, const long F[], long nv, const double x[])
+{
+    if (!ob || !F || !x) return FFC_ERR_NULL;
+    int st = ffc_obstacle_check(ob);
+    if (st) return st;
+    if (nn != 3 && nn != 6) return FFC_ERR_NODES;
+    long count = 0;
+    for (long f = 0; f < nf; f++) {
+        const double *p[3];
+        for (int a = 0; a < 3; a++) {
+            const long v = F[f * nn + a];
+            if (v < 0 || v >= nv) return FFC_ERR_INDEX;
+            p[a] = x + 3 * v;
+        }
+        double e1[3], e2[3], nf3[3], c[3], g, n[3];
+        for (int i = 0; i < 3; i++) {
+            e1[i] = p[1][i] - p[0][i];
+            e2[i] = p[2][i] - p[0][i];
+            c[i] = (p[0][i] + p[1][i] + p[2][i]) / 3.0;
+        }
+        ffc__cross(e1, e2, nf3);
+        if (ffc_obstacle_gap(ob, c, &g, n, NULL)) continue;
+        count += ffc__dot(nf3, n) < 0.0;
+    }
+    return count;
+}
+
 int ffc_obstacle_search(const ffc_obstacle *ob, int nns, long nfs, const long Fs[], long nv, const double x[],
                         int qdeg, const ffc_search_opts *o, long cap, ffc_link links[])
 {

@@ -105,6 +105,16 @@ long addObstacle(const Named &nm, FFScene *const &C, KN<long> *const &sl, string
         fail(fn, std::string("argument 'method': an obstacle takes the augmented Lagrangian (\"al\")"));
     std::vector<long> Fs, tS;
     const long nfs = select_facets(fn, d, "slaveLabs", *sl, Fs, tS);
+    // a surface none of whose facets faces the obstacle cannot touch it
+    const double *X = d.order == 2 ? d.p2.X2.data() : d.m.X.data();
+    if (ffc_obstacle_facing(&ob, d.order == 2 ? 6 : 3, nfs, Fs.data(), d.nn, X) == 0) {
+        std::string what = kind == FFC_OBST_PLANE ? "argument 'normal': no facet of the surface " + labels_text(*sl) +
+                                                        " faces the plane (the normal points toward the body, against the surface's outward normals)"
+                                                  : std::string("argument 'inside': no facet of the surface ") + labels_text(*sl) +
+                                                        " faces the " + shape_name(kind) + " (inside = " + (ob.inside ? "1" : "0") +
+                                                        "; the body " + (ob.inside ? "inside" : "outside") + " it)";
+        fail(fn, what);
+    }
     long bad = -1;
     const int k = ffc_scene_add_obstacle(d.s, nfs, Fs.data(), &ob, &o, &bad);
     if (k < 0) scene_error(fn, k, bad, "the obstacle pair");

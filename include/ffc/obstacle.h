@@ -57,6 +57,14 @@ int ffc_obstacle_make(int kind, const double c[3], const double a[3], double r, 
  * (no normal there). */
 int ffc_obstacle_gap(const ffc_obstacle *ob, const double x[3], double *g, double n[3], double H[3][3]);
 
+/* The facets of Fs[nf*nn] (node positions x[nv*3]) that face the
+ * obstacle: their outward normal (vertices 0-2) opposes the obstacle's
+ * normal at their centre (n_f . n < 0); facets on the centre or axis
+ * count as not facing.  Returns the count, or an error.  A surface none of
+ * whose facets faces the obstacle cannot touch it (a plane's normal given
+ * pointing away from the body, a body meant to be inside given outside). */
+long ffc_obstacle_facing(const ffc_obstacle *ob, int nn, long nf, const long F[], long nv, const double x[]);
+
 /* Links of the slave surface Fs[nfs*nns] (node positions x[nv*3]) against
  * the obstacle, Gauss rule of degree qdeg: nfs * ffc_quad_size(qdeg)
  * links in the order (facet, point), as ffc_search: a point gets a link

@@ -321,6 +321,12 @@ static void test_search(void **state)
         assert_int_equal(L[k].mf, 0);
         assert_close(L[k].gap, g, 1e-15);
     }
+    /* the surface faces the sphere (its facets' normals point down, toward it);
+     * inside the same sphere, none faces it */
+    assert_int_equal(ffc_obstacle_facing(&ob, 3, GF, F, GV, X), GF);
+    ob.inside = 1;
+    assert_int_equal(ffc_obstacle_facing(&ob, 3, GF, F, GV, X), 0);
+    ob.inside = 0;
     ob.c[2] = -10.0;
     assert_int_equal(ffc_obstacle_search(&ob, 3, GF, F, GV, X, 2, NULL, GF * 3, L), 0);
     for (int k = 0; k < GF * 3; k++) assert_int_equal(L[k].mf, -1);
