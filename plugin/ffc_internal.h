@@ -40,6 +40,13 @@ static inline void ffc__cross(const double a[3], const double b[3], double c[3])
     c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+/* a triangle's normal (b - a) x (c - a), not scaled: twice its area */
+static inline void ffc__tri_normal(const double a[3], const double b[3], const double c[3], double n[3])
+{
+    const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    ffc__cross(e1, e2, n);
+}
+
 double ffc__facet_size2(const double X[][3]);
 
 #include "ffc.h"

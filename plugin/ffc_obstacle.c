@@ -89,13 +89,9 @@ long ffc_obstacle_facing(const ffc_obstacle *ob, int nn, long nf, const long F[]
             if (v < 0 || v >= nv) return FFC_ERR_INDEX;
             p[a] = x + 3 * v;
         }
-        double e1[3], e2[3], nf3[3], c[3], g, n[3];
-        for (int i = 0; i < 3; i++) {
-            e1[i] = p[1][i] - p[0][i];
-            e2[i] = p[2][i] - p[0][i];
-            c[i] = (p[0][i] + p[1][i] + p[2][i]) / 3.0;
-        }
-        ffc__cross(e1, e2, nf3);
+        double nf3[3], c[3], g, n[3];
+        for (int i = 0; i < 3; i++) c[i] = (p[0][i] + p[1][i] + p[2][i]) / 3.0;
+        ffc__tri_normal(p[0], p[1], p[2], nf3);
         if (ffc_obstacle_gap(ob, c, &g, n, NULL)) continue;
         count += ffc__dot(nf3, n) < 0.0;
     }
@@ -134,8 +130,8 @@ int ffc_obstacle_search(const ffc_obstacle *ob, int nns, long nfs, const long Fs
             lk->xs[0] = qxi[q][0];
             lk->xs[1] = qxi[q][1];
             lk->mf = -1;
-            double N[FFC_MAXNODES], dN[FFC_MAXNODES][2], p[3] = {0, 0, 0};
-            ffc_shape(nns, qxi[q], N, dN);
+            double N[FFC_MAXNODES], p[3] = {0, 0, 0};
+            ffc_shape(nns, qxi[q], N, NULL);
             for (int a = 0; a < nns; a++)
                 for (int i = 0; i < 3; i++) p[i] += N[a] * P[a][i];
             double g, n[3];

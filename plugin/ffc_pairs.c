@@ -36,13 +36,6 @@ static long tree_overlap(const ffc_tree *t, const double b[6], long cap, long ou
     return n;
 }
 
-static void facet_normal(const double X[3][3], double n[3])
-{
-    const double a[3] = {X[1][0] - X[0][0], X[1][1] - X[0][1], X[1][2] - X[0][2]};
-    const double b[3] = {X[2][0] - X[0][0], X[2][1] - X[0][1], X[2][2] - X[0][2]};
-    ffc__cross(a, b, n);
-}
-
 /* two facets sharing a corner vertex */
 static int share_corner(const long a[], const long b[])
 {
@@ -84,7 +77,7 @@ int ffc_mortar_pairs(const ffc_tree *t, long nfs, const long Fs[], long nvs, con
                 Xs[a][i] = x[3 * Fs[nn * f + a] + i];
                 if (!isfinite(Xs[a][i])) return FFC_ERR_NONFINITE;
             }
-        facet_normal(Xs, ns);
+        ffc__tri_normal(Xs[0], Xs[1], Xs[2], ns);
         ffc__facet_box(nn, &Xs[0][0], box);
         for (int i = 0; i < 3; i++) { box[i] -= rmax; box[3 + i] += rmax; }
         const long nc = tree_overlap(t, box, MORTAR_CAND, cand);
@@ -99,7 +92,7 @@ int ffc_mortar_pairs(const ffc_tree *t, long nfs, const long Fs[], long nvs, con
                     Xm[a][i] = x[3 * t->F[nn * mf + a] + i];
                     if (!isfinite(Xm[a][i])) return FFC_ERR_NONFINITE;
                 }
-            facet_normal(Xm, nm);
+            ffc__tri_normal(Xm[0], Xm[1], Xm[2], nm);
             if (!(ffc__dot(ns, nm) < 0)) continue; /* not facing */
             /* self-contact (the slave facets are the tree's, in the same order):
                each two facing facets once, from the one of lower index, and

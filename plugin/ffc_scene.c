@@ -341,10 +341,9 @@ static int pair_add(ffc_scene *s, long nfs, const long Fs[], long nfm, const lon
         return st ? st : FFC_ERR_VALUE;
     if ((st = check_nodes(nfs * s->nper, Fs, s->nv, bad))) return st;
     if (!ob && (st = check_nodes(nfm * s->nper, Fm, s->nv, bad))) return st;
-    if (ob) {
-    } else if (o->search.self) { /* self-contact: one surface on both sides */
+    if (!ob && o->search.self) { /* self-contact: one surface on both sides */
         if (nfs != nfm || memcmp(Fs, Fm, (size_t)(nfs * s->nper) * sizeof *Fs)) return FFC_ERR_VALUE;
-    } else if ((st = check_fused(s->nper, nfs, Fs, nfm, Fm, s->nv, bad)))
+    } else if (!ob && (st = check_fused(s->nper, nfs, Fs, nfm, Fm, s->nv, bad)))
         return st;
     if ((st = check_interior(s, nfs, Fs, nfm, Fm, bad))) return st;
     if ((o->method == FFC_METHOD_NTS || o->dual_t) && s->nper != 3) return FFC_ERR_NODES;

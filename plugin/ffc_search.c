@@ -169,12 +169,6 @@ static void cand_pick(cand_t *c)
  * same node: the same coordinates, as both come from one array), or when
  * its normal does not oppose the point's facet's (n . n_s >= 0: the
  * surface merely curves there). */
-static void corner_normal(const double X[9], double n[3])
-{
-    double e1[3], e2[3];
-    for (int i = 0; i < 3; i++) { e1[i] = X[3 + i] - X[i]; e2[i] = X[6 + i] - X[i]; }
-    ffc__cross(e1, e2, n);
-}
 static int excluded(const ffc_tree *t, long s, const self_ex *ex)
 {
     if (t->slot2f[s] <= ex->f) return 1;
@@ -183,7 +177,7 @@ static int excluded(const ffc_tree *t, long s, const self_ex *ex)
         for (int b = 0; b < 3; b++)
             if (X[3 * a] == E[3 * b] && X[3 * a + 1] == E[3 * b + 1] && X[3 * a + 2] == E[3 * b + 2]) return 1;
     double n[3];
-    corner_normal(X, n);
+    ffc__tri_normal(X, X + 3, X + 6, n);
     return !(ffc__dot(n, ex->n) < 0);
 }
 
@@ -556,7 +550,7 @@ static int search_common(const ffc_tree *t, int nns, long nfs, const long Fs[], 
         self_ex ex;      /* self-contact: facet f */
         if (o->self) {
             memcpy(ex.X, X, sizeof ex.X);  /* (its corners: the first three rows of X) */
-            corner_normal(ex.X, ex.n);
+            ffc__tri_normal(ex.X, ex.X + 3, ex.X + 6, ex.n);
             const double nn = sqrt(ffc__dot(ex.n, ex.n));
             for (int i = 0; i < 3; i++) ex.n[i] = nn > 0 ? ex.n[i] / nn : 0.0;
             ex.f = f;

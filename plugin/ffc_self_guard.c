@@ -51,8 +51,8 @@ static int pair_passed(const ffc_scene *s, const scene_pair *p, long *n)
         /* at the commit: the point and the same facet */
         facet_at(nper, p->Fs, lk->sf, s->X, s->u_prev, Ps);
         facet_at(nper, p->Fm, lk->mf, s->X, s->u_prev, Pm);
-        double N[FFC_MAXNODES], dN[FFC_MAXNODES][2], x0[3] = {0, 0, 0};
-        ffc_shape(nper, lk->xs, N, dN);
+        double N[FFC_MAXNODES], x0[3] = {0, 0, 0};
+        ffc_shape(nper, lk->xs, N, NULL);
         for (int a = 0; a < nper; a++)
             for (int i = 0; i < 3; i++) x0[i] += N[a] * Ps[a][i];
         ffc_proj pr;

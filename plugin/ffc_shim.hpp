@@ -295,7 +295,10 @@ long addPair(const Named &nm, FFScene *const &C, KN<long> *const &sl, KN<long> *
 long sceneSelfPassed(const Named &, FFScene *const &C, KN<double> *const &u);
 // a label list as text: {1, 2}
 std::string labels_text(const KN<long> &l);
-// ffc_shim_obstacle.cpp
+// the label list of a pair's side (argument arg): defined, not empty
+KN<long> side_labels(const char *fn, const char *arg, KN<long> *l);
+// ffc_shim_obstacle.cpp: the named arguments of its calls, the pair options then the obstacle's own
+enum { OB_CENTER = PO_N, OB_RADIUS, OB_AXIS, OB_NORMAL, OB_INSIDE, OB_MOVE, OB_N };
 extern basicAC_F0::name_and_type obstacle_names[];
 void init_obstacle_names();
 long addObstacle(const Named &nm, FFScene *const &C, KN<long> *const &sl, string *const &shape);

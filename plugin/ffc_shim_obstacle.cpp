@@ -3,8 +3,6 @@
 
 namespace ffc_shim {
 
-// the pair options, then the obstacle's own (OB_*)
-enum { OB_CENTER = PO_N, OB_RADIUS, OB_AXIS, OB_NORMAL, OB_INSIDE, OB_MOVE, OB_N };
 basicAC_F0::name_and_type obstacle_names[OB_N];
 
 void init_obstacle_names()
@@ -21,6 +19,19 @@ void init_obstacle_names()
 namespace {
 
 const char *shape_name(int k) { return k == FFC_OBST_PLANE ? "plane" : k == FFC_OBST_SPHERE ? "sphere" : "cylinder"; }
+
+// pair k's obstacle (argument k), or an error naming the pair
+ffc_obstacle need_obstacle(const char *fn, const SceneData &d, long k, int *p)
+{
+    *p = need_pair_index(fn, d, k, false, "k");
+    ffc_obstacle ob;
+    if (ffc_scene_obstacle(d.s, *p, &ob)) {
+        std::ostringstream s;
+        s << "argument 'k': pair " << *p << " (" << d.labels[*p] << ") has no obstacle (ffcAddObstacle makes one)";
+        fail(fn, s.str());
+    }
+    return ob;
+}
 
 // a 3-vector named argument i: from the script, or def (NULL: required)
 void vec3(const char *fn, const Named &nm, int i, const double *def, double v[3], const char *why)
@@ -93,8 +104,7 @@ long addObstacle(const Named &nm, FFScene *const &C, KN<long> *const &sl, string
 {
     const char *fn = "ffcAddObstacle";
     SceneData &d = need_scene(fn, C);
-    if (!sl) fail(fn, "argument 'slaveLabs': array is not defined");
-    if (sl->N() == 0) fail(fn, "argument 'slaveLabs': empty list of labels");
+    side_labels(fn, "slaveLabs", sl);
     const std::string sh = shape ? *shape : "";
     const int kind = sh == "plane" ? FFC_OBST_PLANE : sh == "sphere" ? FFC_OBST_SPHERE : sh == "cylinder" ? FFC_OBST_CYLINDER : 0;
     if (!kind) fail(fn, "argument 'shape': \"" + sh + "\" is not a shape of obstacles (\"plane\", \"sphere\", \"cylinder\")");
@@ -140,15 +150,10 @@ long moveObstacle(const Named &nm, FFScene *const &C, long const &k)
 {
     const char *fn = "ffcMoveObstacle";
     SceneData &d = need_scene(fn, C);
-    const int p = need_pair_index(fn, d, k, false, "k");
+    int p;
+    const ffc_obstacle base = need_obstacle(fn, d, k, &p);
     for (int i = 0; i < PO_N; i++)
         if (nm.has(i)) fail(fn, std::string("argument '") + nm.name(i) + "': a pair's options change with ffcSetPair");
-    ffc_obstacle base;
-    if (ffc_scene_obstacle(d.s, p, &base)) {
-        std::ostringstream s;
-        s << "argument 'k': pair " << p << " (" << d.labels[p] << ") has no obstacle (ffcAddObstacle makes one)";
-        fail(fn, s.str());
-    }
     double move[3];
     const ffc_obstacle ob = named_obstacle(fn, nm, base.kind, &base, move);
     int st = ffc_scene_set_obstacle(d.s, p, &ob, move);
@@ -171,19 +176,14 @@ long obstaclesAt(const Named &, FFScene *const &C, double const &lf)
 }
 
 // ffcObstacle(C, k, what): pair k's obstacle now: "x", "y", "z" (centre or
-// point), "radius", "nx", "ny", "nz" (normal or axis), "move" (the length of
-// its path's move), "mx", "my", "mz" (the move).
+// point), "radius", "nx", "ny", "nz" (normal or axis), "mx", "my", "mz"
+// (its path's move).
 double obstacleValue(const Named &, FFScene *const &C, long const &k, string *const &what)
 {
     const char *fn = "ffcObstacle";
     SceneData &d = need_scene(fn, C);
-    const int p = need_pair_index(fn, d, k, false, "k");
-    ffc_obstacle ob;
-    if (ffc_scene_obstacle(d.s, p, &ob)) {
-        std::ostringstream s;
-        s << "argument 'k': pair " << p << " (" << d.labels[p] << ") has no obstacle";
-        fail(fn, s.str());
-    }
+    int p;
+    const ffc_obstacle ob = need_obstacle(fn, d, k, &p);
     const std::string w = what ? *what : "";
     if (w == "x" || w == "y" || w == "z") return ob.c[w[0] - 'x'];
     if (w == "nx" || w == "ny" || w == "nz") return ob.a[w[1] - 'x'];
@@ -193,12 +193,7 @@ double obstacleValue(const Named &, FFScene *const &C, long const &k, string *co
         ffc_scene_obstacle_path(d.s, p, m);
         return m[w[1] - 'x'];
     }
-    if (w == "move") {
-        double m[3];
-        ffc_scene_obstacle_path(d.s, p, m);
-        return std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
-    }
-    fail(fn, "argument 'what': \"" + w + "\" is not x, y, z, radius, nx, ny, nz, move, mx, my or mz");
+    fail(fn, "argument 'what': \"" + w + "\" is not x, y, z, radius, nx, ny, nz, mx, my or mz");
 }
 
 } // namespace ffc_shim

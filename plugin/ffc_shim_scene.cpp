@@ -252,8 +252,6 @@ FFScene *sceneInit(const Named &nm, FFScene *const &C, pmesh3 const &pTh)
     return C;
 }
 
-namespace {
-
 // The label list of a pair's side (argument arg): one label or an int[int].
 KN<long> side_labels(const char *fn, const char *arg, KN<long> *l)
 {
@@ -261,8 +259,6 @@ KN<long> side_labels(const char *fn, const char *arg, KN<long> *l)
     if (l->N() == 0) fail(fn, std::string("argument '") + arg + "': empty list of labels");
     return *l;
 }
-
-} // namespace
 
 // The pair options of the named arguments (from o, the current ones).
 basicAC_F0::name_and_type pair_names[] = {

@@ -17,10 +17,9 @@ void init_scene()
     Global.Add("ffcAddPair", "(", named<long, S, long, KN<long> *>("ffcAddPair", pair_names, PO_N, addPairLA));
     Global.Add("ffcAddPair", "(", named<long, S, KN<long> *, long>("ffcAddPair", pair_names, PO_N, addPairAL));
     init_obstacle_names();
-    const int obn = PO_N + 6;   // (the pair options, then center, radius, axis, normal, inside, move)
-    Global.Add("ffcAddObstacle", "(", named<long, S, KN<long> *, string *>("ffcAddObstacle", obstacle_names, obn, addObstacle));
-    Global.Add("ffcAddObstacle", "(", named<long, S, long, string *>("ffcAddObstacle", obstacle_names, obn, addObstacleL));
-    Global.Add("ffcMoveObstacle", "(", named<long, S, long>("ffcMoveObstacle", obstacle_names, obn, moveObstacle));
+    Global.Add("ffcAddObstacle", "(", named<long, S, KN<long> *, string *>("ffcAddObstacle", obstacle_names, OB_N, addObstacle));
+    Global.Add("ffcAddObstacle", "(", named<long, S, long, string *>("ffcAddObstacle", obstacle_names, OB_N, addObstacleL));
+    Global.Add("ffcMoveObstacle", "(", named<long, S, long>("ffcMoveObstacle", obstacle_names, OB_N, moveObstacle));
     Global.Add("ffcObstaclesAt", "(", named<long, S, double>("ffcObstaclesAt", nullptr, 0, obstaclesAt));
     Global.Add("ffcObstacle", "(", named<double, S, long, string *>("ffcObstacle", nullptr, 0, obstacleValue));
     Global.Add("ffcError", "(", new OneOperator2_<long, string *, string *>(ffcErrorCall));
