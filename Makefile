@@ -17,6 +17,13 @@ FFFLAGS  = -shared -fPIC -O2 -std=c++14 -DBAMG_LONG_LONG -DNCHECKPTR -DNDEBUG \
 B       := build
 CLIBS   := -lumfpack -lcholmod -llapack -lblas -lm
 
+# PETSc (the iterative path, plugin/ffc_eng_petsc.c) where pkg-config and
+# mpicc find it; without it that file builds a stub (FFC_ERR_UNAVAILABLE)
+PETSC_OK := $(shell pkg-config --exists PETSc 2>/dev/null && command -v mpicc >/dev/null 2>&1 && echo 1)
+ifeq ($(PETSC_OK),1)
+PETSC_CFLAGS := -DFFC_PETSC $(patsubst -I%,-isystem %,$(shell pkg-config --cflags-only-I PETSc) $(shell mpicc --showme:compile))
+PETSC_LIBS   := $(shell pkg-config --libs PETSc) $(shell mpicc --showme:link)
+endif
 CSRC    := $(wildcard plugin/*.c)
 COBJ    := $(patsubst plugin/%.c,$(B)/obj/%.o,$(CSRC))
 # the FreeFEM shim: every plugin/*.cpp, one object each (the FreeFEM flags
@@ -40,6 +47,7 @@ $(B)/obj/%.o: plugin/%.c $(HDRS)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
 
+$(B)/obj/ffc_eng_petsc.o $(B)/mpi/obj/ffc_eng_petsc.o: CFLAGS += $(PETSC_CFLAGS)
 $(B)/libffc.a: $(COBJ)
 	@rm -f $@
 	ar rcs $@ $^
@@ -49,7 +57,7 @@ $(B)/shim/%.o: plugin/%.cpp $(SHHDRS)
 	$(CXX) $(SHFLAGS) -c $< -o $@
 
 $(B)/ffcontact.so: $(SHOBJ) $(B)/libffc.a
-	$(CXX) $(FFFLAGS) $(SHOBJ) $(B)/libffc.a $(CLIBS) -o $@
+	$(CXX) $(FFFLAGS) $(SHOBJ) $(B)/libffc.a $(CLIBS) $(PETSC_LIBS) -o $@
 
 # the plugin for FreeFem++-mpi (scripts/ff -np N): the same sources with
 # -DFFC_MPI, parallel MUMPS for the bulk factorization when ranks > 1
@@ -69,16 +77,16 @@ $(MB)/shim/%.o: plugin/%.cpp $(SHHDRS)
 	@mkdir -p $(dir $@)
 	$(MPICXX) $(SHFLAGS) -DFFC_MPI -c $< -o $@
 $(MB)/ffcontact.so: $(MSHOBJ) $(MB)/libffc.a
-	$(MPICXX) $(FFFLAGS) -DFFC_MPI $(MSHOBJ) $(MB)/libffc.a -ldmumps -lscalapack-openmpi $(CLIBS) -o $@
+	$(MPICXX) $(FFFLAGS) -DFFC_MPI $(MSHOBJ) $(MB)/libffc.a -ldmumps -lscalapack-openmpi $(CLIBS) $(PETSC_LIBS) -o $@
 $(MB)/tests/%: tests/mpi/%.c tests/c/ffc_test.h tests/c/engine_test.h $(MB)/libffc.a
 	@mkdir -p $(dir $@)
-	$(MPICC) $(CFLAGS) -DFFC_MPI -Itests/c -Iplugin $< $(MB)/libffc.a -lcmocka -ldmumps -lscalapack-openmpi $(CLIBS) -o $@
+	$(MPICC) $(CFLAGS) -DFFC_MPI -Itests/c -Iplugin $< $(MB)/libffc.a -lcmocka -ldmumps -lscalapack-openmpi $(CLIBS) $(PETSC_LIBS) -o $@
 MPITESTS := $(patsubst tests/mpi/%.c,$(MB)/tests/%,$(wildcard tests/mpi/test_*.c))
 mpitest: $(MPITESTS)
 
 $(B)/tests/%: tests/c/%.c tests/c/ffc_test.h tests/c/engine_test.h $(B)/libffc.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Itests/c -Iplugin $< $(B)/libffc.a -lcmocka $(CLIBS) -o $@
+	$(CC) $(CFLAGS) -Itests/c -Iplugin $< $(B)/libffc.a -lcmocka $(CLIBS) $(PETSC_LIBS) -o $@
 
 ctest: $(CTESTS)
 
@@ -119,9 +127,9 @@ $(B)/meshes/%.msh: meshes/%.geo
 
 # benchmarks
 $(B)/bench_search: tests/bench/bench_search.c $(B)/libffc.a
-	$(CC) $(CFLAGS) $< $(B)/libffc.a $(CLIBS) -o $@
+	$(CC) $(CFLAGS) $< $(B)/libffc.a $(CLIBS) $(PETSC_LIBS) -o $@
 
-.PHONY: bench bench-search bench-contact bench-mpi bench-scene bench-finite
+.PHONY: bench bench-search bench-contact bench-mpi bench-scene bench-finite bench-scale
 bench-search: $(B)/bench_search
 	@sh tests/bench/bench_search.sh
 bench-contact: all
@@ -137,7 +145,10 @@ bench-scene: all
 # finite deformation: the soft ball's three levels (MODE=full: and the ironing)
 bench-finite: all
 	@sh tests/bench/bench_finite.sh $(MODE)
-bench: bench-search bench-contact bench-mpi bench-scene bench-finite
+# the engines as the mesh grows: factored, UMFPACK, iterative on 1 and 2 ranks (MODE=full: 44k dofs too)
+bench-scale: all
+	@sh tests/bench/bench_scale.sh $(MODE)
+bench: bench-search bench-contact bench-mpi bench-scene bench-finite bench-scale
 
 # sanitizers and fuzzing (clang from Debian)
 ASAN := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all

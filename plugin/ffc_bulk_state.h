@@ -91,7 +91,6 @@ struct ffc__bulk {
 int ffc__bulk_all(const ffc__bulk *b, int ok);
 /* st on every rank, or FFC_ERR_MEMORY where another rank failed */
 int ffc__bulk_agree(const ffc__bulk *b, int st);
-double ffc__seconds(void);
 /* the factorization of K' + S, S = kfree on the dofs nd[nnew] */
 int ffc__bulk_factorize(ffc__bulk *b, long nnew, const long nd[]);
 /* K alone, then K + S on nd[nnew] when K is singular */

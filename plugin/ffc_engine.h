@@ -1,4 +1,4 @@
-/* ffc_engine.h: the linear engines (CHOLMOD, UMFPACK, parallel MUMPS)
+/* ffc_engine.h: the linear engines (CHOLMOD, UMFPACK, parallel MUMPS, PETSc)
  * behind one interface: analyze, factorize, solve, selected entries of
  * the inverse, release, free (internal). */
 #ifndef FFC_ENGINE_H
@@ -82,6 +82,11 @@ struct ffc__engine {
 int ffc__cholmod_create(ffc_solve_info *info, ffc__ranks *ranks, ffc__engine **out);
 int ffc__umfpack_create(ffc_solve_info *info, ffc__engine **out);
 int ffc__mumps_create(ffc_solve_info *info, int fcomm, int sym, ffc__engine **out);
+/* PETSc's Krylov solvers and preconditioners (ffc_full_set_iterative), on
+ * the ranks opt names; FFC_ERR_UNAVAILABLE in a build without PETSc.
+ * ffc__petsc_info: its counters. */
+int ffc__petsc_create(ffc_solve_info *info, const ffc_iterative *opt, ffc__engine **out);
+int ffc__petsc_info(const ffc__engine *e, ffc_iterative_info *out);
 
 /* CHOLMOD only (test hooks and statistics; nothing for another engine):
  * the factor's kind from the next factorization (supernodal = 1: CHOLMOD's

@@ -1,8 +1,9 @@
 /* ffc_fullsolve.c: a full Newton system A x = b (general sparse: not
  * symmetric with friction, indefinite with multipliers) on a linear
  * engine: in one process CHOLMOD for a symmetric positive definite one,
- * UMFPACK otherwise, each analysed once per pattern; parallel MUMPS over
- * the ranks of a communicator. */
+ * UMFPACK otherwise, each analysed once per pattern, or PETSc's Krylov
+ * solvers (the iterative path); parallel MUMPS over the ranks of a
+ * communicator. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -82,6 +83,9 @@ typedef struct {
  * (their lower triangle), each with the pattern it analysed. */
 struct ffc_full {
     pattern_engine lu, chol;   /* a general matrix (its LU), a symmetric one (its LL^T) */
+    pattern_engine it;         /* the iterative path's (PETSc; eng NULL: none) */
+    int iterative;             /* 1: general matrices go to it */
+    long it_nv;                /* the nodes it was given (count; 0: none, every order goes to it) */
     ffc__ranks one;            /* CHOLMOD's ranks: this process */
     long one_count;            /* (its count array) */
     ffc_solve_info info;       /* the counters of both */
@@ -125,8 +129,10 @@ void ffc_full_free(ffc_full *f)
     if (!f) return;
     if (f->lu.eng) f->lu.eng->op->free(f->lu.eng);
     if (f->chol.eng) f->chol.eng->op->free(f->chol.eng);
+    if (f->it.eng) f->it.eng->op->free(f->it.eng);
     pattern_free(&f->lu);
     pattern_free(&f->chol);
+    pattern_free(&f->it);
     free(f->work);
     free(f);
 }
@@ -317,7 +323,7 @@ static int pattern_solve(ffc_full *f, pattern_engine *p, const ffc__tri *A, cons
         if ((st = grow_pattern(p, A))) { pattern_free(p); return st; }
         p->ready = 0;   /* (analysed when next factorized; the last factor stays a preconditioner) */
     }
-    if (f->reuse > 0 && p->eng->factored && p->eng->n == p->n) {
+    if (f->reuse > 0 && p != &f->it && p->eng->factored && p->eng->n == p->n) {
         const long it = gmres_reuse(f, p, b, x);
         if (it >= 0) {
             f->reused++;
@@ -381,9 +387,10 @@ int ffc_full_solve(ffc_full *f, long n, long nt, const long Ti[], const long Tj[
         if (!st) { free(ti); free(tj); free(tv); return FFC_OK; }
     }
     const ffc__tri A = {n, nt, ti, tj, tv, 0};
-    st = pattern_solve(f, &f->lu, &A, b, x);
+    pattern_engine *p = f->iterative && (f->it_nv == 0 || n == 3 * f->it_nv) ? &f->it : &f->lu;
+    st = pattern_solve(f, p, &A, b, x);
     free(ti); free(tj); free(tv);
-    if (st && err) *err = f->lu.eng->err;
+    if (st && err) *err = p->eng->err;
     return st;
 }
 
@@ -411,4 +418,35 @@ int ffc_full_info(const ffc_full *f, ffc_solve_info *info, long *analyses, long 
     if (cholesky) *cholesky = f->cholesky;
     if (not_posdef) *not_posdef = f->not_posdef;
     return FFC_OK;
+}
+
+int ffc_full_set_iterative(ffc_full *f, const ffc_iterative *opt)
+{
+    if (!f || !opt || (opt->nv > 0 && !opt->xyz)) return FFC_ERR_NULL;
+    if (!opt->on) {
+        f->iterative = 0;
+        return FFC_OK;
+    }
+    if (opt->shared && !ffc_has_mpi()) return FFC_ERR_UNAVAILABLE;
+    if (!(opt->rtol > 0.0 && opt->rtol < 1.0) || opt->maxit < 1 || opt->maxit > 100000 || opt->nv < 0 ||
+        (opt->pc != FFC_PC_GAMG && opt->pc != FFC_PC_HYPRE && opt->pc != FFC_PC_MUMPS))
+        return FFC_ERR_VALUE;
+    for (long k = 0; k < 3 * opt->nv; k++)
+        if (!isfinite(opt->xyz[k])) return FFC_ERR_NONFINITE;
+    ffc__engine *e = NULL;
+    const int st = ffc__petsc_create(&f->info, opt, &e);
+    if (st) return st;
+    if (f->it.eng) f->it.eng->op->free(f->it.eng);
+    pattern_free(&f->it);
+    f->it.eng = e;
+    f->iterative = 1;
+    f->it_nv = opt->nv;
+    return FFC_OK;
+}
+
+int ffc_full_iterative_info(const ffc_full *f, ffc_iterative_info *info)
+{
+    if (!f || !info) return FFC_ERR_NULL;
+    memset(info, 0, sizeof *info);
+    return f->it.eng ? ffc__petsc_info(f->it.eng, info) : FFC_OK;
 }

@@ -154,4 +154,7 @@ int ffc__mpi_bcast_from(int fcomm, int root, double v[], long n);
  * before, or 0 when the BLAS is not OpenBLAS (nothing changed). */
 int ffc__blas_threads(int n);
 
+/* a monotonic clock (seconds) */
+double ffc__seconds(void);
+
 #endif

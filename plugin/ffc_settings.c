@@ -17,6 +17,9 @@ static const ffc_setting table[] = {
      "iterations of the condensed Newton (the factored path); where it stops short, the full-system Newton goes "
      "on for maxNewton more"},
     {"maxUzawa", FFC_SET_INT, 30, 1, BIG, 0, NULL, "augmentations per load step"},
+    {"uzawaEta", FFC_SET_REAL, 0.1, 0, 1, 2, NULL,
+     "full-system Newton after an augmentation: done once |r| <= uzawaEta x its residual there (0: to rtol every "
+     "time; the step's last augmentation is always to rtol)"},
     {"maxLineSearch", FFC_SET_INT, 8, 0, BIG, 0, NULL, "line-search evaluations per phase of a Newton iteration (0: full steps)"},
     {"lsTol", FFC_SET_REAL, 0.5, 0, 1, 3, NULL, "line search: a step is taken once |r(u + a du) . du| <= lsTol |r(u) . du|"},
     {"maxCuts", FFC_SET_INT, 6, 0, BIG, 0, NULL, "step bisections in a row before a solve gives up"},
@@ -41,8 +44,16 @@ static const ffc_setting table[] = {
      "the contact tangent of Newton (material: no geometric terms, linear convergence)"},
     {"condensedTangent", FFC_SET_WORD, 0, 0, 0, 0, "auto ranked consistent material",
      "the condensed Newton's tangent (auto: ranked when every pair is nodal and frictionless, else consistent)"},
-    {"solver", FFC_SET_WORD, 0, 0, 0, 0, "auto factored UMFPACK",
-     "the linear solves (auto: factored for a linear symmetric bulk, else UMFPACK)"},
+    {"solver", FFC_SET_WORD, 0, 0, 0, 0, "auto factored UMFPACK iterative",
+     "the linear solves (auto: factored for a linear symmetric bulk, else UMFPACK; iterative: PETSc's Krylov "
+     "solvers on the full system)"},
+    {"preconditioner", FFC_SET_WORD, 0, 0, 0, 0, "gamg hypre mumps",
+     "solver = iterative: GMRES preconditioned by GAMG with the rigid-body modes, by hypre's BoomerAMG, or a "
+     "direct LU by MUMPS through PETSc"},
+    {"krylovTol", FFC_SET_REAL, 1e-12, 0, 1, 3, NULL,
+     "solver = iterative: true residual <= krylovTol x |b| (penalty-stiff contact rows: near the direct solve's "
+     "level, or Newton stalls)"},
+    {"krylovMax", FFC_SET_INT, 1000, 1, 100000, 0, NULL, "solver = iterative: Krylov iterations per solve at most"},
     {"condensed", FFC_SET_INT, 1, 0, 1, 0, NULL,
      "1: the factored path runs each Newton loop in C on the contact dofs (the condensed Newton)"},
     {"maxContactDofs", FFC_SET_INT, 8000, 1, BIG, 0, NULL, "the factored path's limit on the contact dofs"},

@@ -234,6 +234,7 @@ struct SceneData {
     ffc_newton_info newton{};  // the last ffcNewton
     std::vector<double> ntsM;  // ffcNTSSolve's multipliers, kept at the largest row count met (one call per solve)
     ffc_full *full = nullptr;  // ffcFullSolve's solver (its analysed pattern)
+    std::string iterativeKey;  // the settings its iterative path was last set from (ffcFullSolve)
     // the hyperelastic bulk (ffcHyperForce, ffcHyperTangent): its node graph
     // (ffc_tets_pattern: rp[nn + 1], adj[nb]) and the tangent's rows and
     // columns (9 nb), made at the first call

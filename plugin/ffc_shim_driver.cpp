@@ -193,6 +193,7 @@ void register_driver()
         {"ffcStepAugment", FFC_STEP_AUGMENT},         {"ffcStepNoPair", FFC_STEP_NOPAIR},
         {"ffcStepMaterial", FFC_STEP_MATERIAL},       {"ffcStepTime", FFC_STEP_TIME},
         {"ffcStepSettings", FFC_STEP_SETTINGS},       {"ffcStepNewton", FFC_STEP_NEWTON},
+        {"ffcStepSelfPassed", FFC_STEP_SELF_PASSED},
         // the columns of ffcPoints and of ffcFreeMotions, by name
         {"ffcPtX", FFC_PT_X}, {"ffcPtY", FFC_PT_Y}, {"ffcPtZ", FFC_PT_Z}, {"ffcPtGap", FFC_PT_GAP},
         {"ffcPtP", FFC_PT_P}, {"ffcPtActive", FFC_PT_ACTIVE}, {"ffcPtArea", FFC_PT_AREA},

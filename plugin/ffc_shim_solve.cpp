@@ -441,7 +441,17 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
         if (k == "fullReused") return ru;
         if (k == "fullKrylov") return kr;
     }
-    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, shiftedDofs, rcond, residual, newtonIterations, evaluations, evaluationsShared, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, backsolveTime, reused, factorRanks, factorSplit, fullFactorizations, fullCholesky, fullNotPosdef, fullAnalyses, fullReused, fullKrylov");
+    if (k.compare(0, 9, "iterative") == 0) {   // its iterative path's (solver = "iterative")
+        ffc_iterative_info it = {};
+        if (d.full) ffc_full_iterative_info(d.full, &it);
+        if (k == "iterativeSetups") return it.setups;
+        if (k == "iterativeSolves") return it.solves;
+        if (k == "iterativeIterations") return it.iterations;
+        if (k == "iterativeLast") return it.last_iterations;
+        if (k == "iterativeSetupTime") return it.t_setup;
+        if (k == "iterativeSolveTime") return it.t_solve;
+    }
+    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, shiftedDofs, rcond, residual, newtonIterations, evaluations, evaluationsShared, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, backsolveTime, reused, factorRanks, factorSplit, fullFactorizations, fullCholesky, fullNotPosdef, fullAnalyses, fullReused, fullKrylov, iterativeSetups, iterativeSolves, iterativeIterations, iterativeLast, iterativeSetupTime, iterativeSolveTime");
     return 0;
 }
 
@@ -487,6 +497,42 @@ long parallelSolveOwn(Matrice_Creuse<double> *const &A, KN<double> *const &b, KN
     return 0;
 }
 
+namespace {
+
+// the full solver's iterative path as the scene's settings say (solver =
+// "iterative": PETSc, its preconditioner and tolerances, the rigid-body
+// modes of the scene's nodes, the ranks of FreeFem++-mpi), set again
+// when they change
+void iterative_path(const char *fn, SceneData &d)
+{
+    const ffc_settings *st = ffc_scene_settings(d.s);
+    char solver[32] = "", pc[32] = "";
+    double tol = 0, maxit = 0;
+    ffc_settings_word(st, "solver", solver, sizeof solver);
+    ffc_settings_word(st, "preconditioner", pc, sizeof pc);
+    ffc_settings_get(st, "krylovTol", &tol);
+    ffc_settings_get(st, "krylovMax", &maxit);
+    int rank = 0, ranks = 1, fcomm = 0;
+    ffc_mpi_world(&rank, &ranks, &fcomm);
+    const bool on = std::string(solver) == "iterative";
+    std::ostringstream key;
+    key.precision(17);
+    key << on << " " << pc << " " << tol << " " << maxit << " " << ranks;
+    if (key.str() == d.iterativeKey) return;
+    const std::vector<double> &X = d.order == 1 ? d.m.X : d.p2.X2;
+    const std::string p(pc);
+    const ffc_iterative o = {on, ranks > 1, fcomm, p == "hypre" ? FFC_PC_HYPRE : p == "mumps" ? FFC_PC_MUMPS : FFC_PC_GAMG,
+                             tol, (long)maxit, d.nn, X.data()};
+    const int r = ffc_full_set_iterative(d.full, &o);
+    if (r == FFC_ERR_UNAVAILABLE)
+        fail(fn, "solver = \"iterative\" needs PETSc: this plugin was built without it (sh scripts/setup.sh installs "
+                 "libpetsc-real-dev; then make)");
+    if (r) fail(fn, std::string("solver = \"iterative\": ") + ffc_strerror(r));
+    d.iterativeKey = key.str();
+}
+
+} // namespace
+
 // ffcFullSolve(C, A, b, x, symmetric = 0, reuse = the scene's reuseKrylov):
 // x = A^-1 b for a general sparse A of the scene's size or any other (a
 // full Newton system, a saddle matrix, the mass matrix) by UMFPACK in C,
@@ -495,7 +541,8 @@ long parallelSolveOwn(Matrice_Creuse<double> *const &A, KN<double> *const &b, KN
 // the matrices' entries lie in its pattern, and (reuse > 0) its last
 // factor the preconditioner of GMRES (at most reuse iterations) before a
 // new factorization; 0 solved, 1 singular (an exactly zero pivot; the
-// caller checks the residual, as a tiny pivot gives a huge x)
+// caller checks the residual, as a tiny pivot gives a huge x), 2 the
+// iterative path (solver = "iterative") did not converge in krylovMax
 basicAC_F0::name_and_type full_names[] = {{"symmetric", &typeid(long)}, {"reuse", &typeid(long)}};
 long sceneFullSolve(const Named &nm, FFScene *const &C, Matrice_Creuse<double> *const &A, KN<double> *const &b,
                     KN<double> *const &x)
@@ -517,11 +564,13 @@ long sceneFullSolve(const Named &nm, FFScene *const &C, Matrice_Creuse<double> *
     if (reuse < 0 || reuse > 1000) fail(fn, "argument 'reuse': " + std::to_string(reuse) + " is not in [0, 1000]");
     if (!d.full && ffc_full_create(&d.full)) fail(fn, "out of memory for the full solver");
     ffc_full_set_reuse(d.full, reuse);
+    iterative_path(fn, d);
     std::vector<double> bv(n), xv(n);
     for (long i = 0; i < n; i++) bv[i] = (*b)[i];
     ffc_error err = {};
     const int st = ffc_full_solve(d.full, n, (long)Ti.size(), Ti.data(), Tj.data(), Tv.data(), (int)sym, bv.data(), xv.data(), &err);
     if (st == FFC_ERR_SINGULAR) return 1;
+    if (st == FFC_ERR_NOCONV) return 2;
     if (st) fail(fn, std::string("argument 'A': ") + err.msg);
     x->resize(n);
     for (long i = 0; i < n; i++) (*x)[i] = xv[i];

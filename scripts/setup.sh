@@ -3,7 +3,7 @@
 # are missing (idempotent; needs root or sudo when something is missing).
 PKGS="freefem++ libfreefem++-dev libsuitesparse-dev gmsh libopenblas0-pthread \
 gnuplot-nox libcmocka-dev liblapack-dev make gcc g++ clang libclang-rt-14-dev valgrind \
-libmumps-dev libscalapack-openmpi-dev openmpi-bin libopenmpi-dev"
+libmumps-dev libscalapack-openmpi-dev openmpi-bin libopenmpi-dev libpetsc-real-dev"
 missing=""
 for p in $PKGS; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" \

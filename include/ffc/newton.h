@@ -71,6 +71,7 @@ typedef enum {
     FFC_STEP_MATERIAL = 6,  /* a region without its material (or density, in time) */
     FFC_STEP_TIME = 7,      /* time steps asked of a scene that has none, or none of one that needs them */
     FFC_STEP_SETTINGS = 8,  /* settings that do not go together (a solver or a method the bulk cannot take) */
+    FFC_STEP_SELF_PASSED = 9, /* points of a self-contact surface passed through it (ffc_scene_self_passed) */
     FFC_STEP_NEWTON = 10    /* plus an ffc_newton_reason: Newton stopped short */
 } ffc_step_reason;
 enum { FFC_NEWTON_HIST = 64 };

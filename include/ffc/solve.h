@@ -148,6 +148,49 @@ int ffc_full_info(const ffc_full *f, ffc_solve_info *info, long *analyses, long 
 int ffc_full_set_reuse(ffc_full *f, long maxit);
 int ffc_full_reuse_info(const ffc_full *f, long *reused, long *krylov);
 
+/* The iterative path: the general (sym = 0) systems of a full solver
+ * handed to PETSc instead of UMFPACK: GMRES (restarted every 100
+ * iterations) right-preconditioned by pc, converged at a true residual
+ * of rtol |b| (Dirichlet rows of a tgv diagonal scaled by it), in this
+ * process or (shared = 1, a build with MPI) with the rows shared out over
+ * the ranks of the communicator fcomm, every rank passing the same system
+ * and getting the whole solution.  pc: FFC_PC_GAMG, PETSc's
+ * smoothed-aggregation multigrid, whose near-null space is the six
+ * rigid-body modes of the nodes xyz[3 nv] (a displacement field, dof
+ * 3 i + c component c of node i; xyz NULL: the three translations); FFC_PC_HYPRE, hypre's BoomerAMG; FFC_PC_MUMPS, a direct
+ * LU by MUMPS through PETSc (no Krylov iterations).  Each matrix builds
+ * its preconditioner once (a "factorization" in the counters); the
+ * symmetric systems stay with CHOLMOD, and, when nodes are given, the
+ * systems of another order than 3 nv (a saddle-point matrix with
+ * multipliers) with UMFPACK.  FFC_ERR_UNAVAILABLE in a build
+ * without PETSc (ffc_has_petsc() == 0), FFC_ERR_VALUE for rtol outside
+ * (0, 1), maxit outside [1, 100000] or an unknown pc.  A solve that does
+ * not converge in maxit iterations returns FFC_ERR_NOCONV, err naming
+ * the residual reached.  on = 0 returns to UMFPACK. */
+enum { FFC_PC_GAMG = 0, FFC_PC_HYPRE = 1, FFC_PC_MUMPS = 2 };
+typedef struct {
+    int on;              /* 1: the iterative path */
+    int shared;          /* 1: the rows shared out over the ranks of fcomm; 0: this process alone */
+    int fcomm;           /* those ranks (a Fortran communicator handle) */
+    int pc;              /* FFC_PC_GAMG, FFC_PC_HYPRE, FFC_PC_MUMPS */
+    double rtol;         /* true residual <= rtol |b| (1) */
+    long maxit;          /* Krylov iterations per solve at most (count) */
+    long nv;             /* nodes of xyz (count; 0: none) */
+    const double *xyz;   /* [3 nv] their coordinates (length; copied) */
+} ffc_iterative;
+typedef struct {
+    long setups;         /* preconditioners built (count) */
+    long solves;         /* solves (count) */
+    long iterations;     /* Krylov iterations, all solves (count) */
+    long last_iterations; /* of the last solve (count) */
+    double t_setup;      /* wall time of the set-ups (seconds) */
+    double t_solve;      /* wall time of the solves (seconds) */
+} ffc_iterative_info;
+int ffc_has_petsc(void);
+int ffc_full_set_iterative(ffc_full *f, const ffc_iterative *opt);
+/* what the iterative path did (zeros before its first solve) */
+int ffc_full_iterative_info(const ffc_full *f, ffc_iterative_info *info);
+
 /* Solves (K + Kc) x = b[n], Kc from the triplets (Ti, Tj, Tv)[nt].
  * FFC_ERR_EMPTY without a K; FFC_ERR_INDEX / FFC_ERR_NONFINITE (*bad =
  * the triplet, or the entry of b); FFC_ERR_CAPACITY when Kc touches more

@@ -1,0 +1,324 @@
+/* ffc_eng_petsc.c: the PETSc engine: GMRES right-preconditioned by
+ * algebraic multigrid (GAMG with the rigid-body modes, or BoomerAMG) or a
+ * direct LU by MUMPS, the rows shared out over the ranks of a communicator
+ * (built with -DFFC_PETSC; without it, FFC_ERR_UNAVAILABLE). */
+#include <stdlib.h>
+
+#include "ffc_engine.h"
+#include "ffc_internal.h"
+
+#ifdef FFC_PETSC
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <petscksp.h>
+
+typedef struct {
+    ffc__engine base;
+    ffc_iterative opt;         /* the method (opt.xyz copied to xyz) */
+    double *xyz;               /* [3 nv] the nodes' coordinates (NULL: none) */
+    MPI_Comm comm;             /* the ranks that share the rows */
+    int rank, size;
+    PetscInt lo, hi;           /* this rank's rows [lo, hi) */
+    Mat A;                     /* the matrix, its Dirichlet rows scaled (NULL before analyze) */
+    KSP ksp;
+    Vec b, x, xall;            /* right-hand side and solution (distributed), the solution on every rank */
+    VecScatter toall;
+    double *scale;             /* [n] each row's factor: 1 / its diagonal on a tgv row, else 1 */
+    ffc_iterative_info st;     /* what the solves did */
+} ffc__pet;
+
+/* a PETSc error turned into a status with its message */
+static int pfail(ffc__pet *p, PetscErrorCode ierr, const char *what)
+{
+    const char *text = NULL;
+    PetscErrorMessage(ierr, &text, NULL);
+    const int st = ierr == PETSC_ERR_MEM ? FFC_ERR_MEMORY : FFC_ERR_NOCONV;
+    return ffc__engine_fail(&p->base, st, FFC_AT_COUNT, p->base.n, "PETSc: %s: %s (error %d)", what,
+                            text ? text : "unknown", (int)ierr);
+}
+#define TRY(call, what)                                  \
+    do {                                                 \
+        PetscErrorCode e_ = (call);                      \
+        if (e_) return pfail(p, e_, what);               \
+    } while (0)
+
+static int pet_agree(const ffc__engine *e, int ok)
+{
+    const ffc__pet *p = (const ffc__pet *)e;
+    int all = ok;
+    if (p->size > 1) MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, p->comm);
+    return all;
+}
+
+static void drop_solver(ffc__pet *p)
+{
+    if (p->ksp) KSPDestroy(&p->ksp);
+    p->base.factored = 0;
+}
+
+static void pet_release(ffc__engine *e) { drop_solver((ffc__pet *)e); }
+
+static void drop_all(ffc__pet *p)
+{
+    drop_solver(p);
+    if (p->toall) VecScatterDestroy(&p->toall);
+    if (p->A) MatDestroy(&p->A);
+    if (p->b) VecDestroy(&p->b);
+    if (p->x) VecDestroy(&p->x);
+    if (p->xall) VecDestroy(&p->xall);
+    free(p->scale);
+    p->scale = NULL;
+    p->base.n = 0;
+}
+
+static void pet_free(ffc__engine *e)
+{
+    ffc__pet *p = (ffc__pet *)e;
+    drop_all(p);
+    free(p->xyz);
+    free(p);
+}
+
+/* Rows are shared out in blocks of three (a node's dofs) when n is a
+ * multiple of three, so that the block size and the rigid-body modes
+ * hold on every rank. */
+static int pet_analyze(ffc__engine *e, const ffc__tri *T)
+{
+    ffc__pet *p = (ffc__pet *)e;
+    drop_all(p);
+    const PetscInt n = (PetscInt)T->n, bs = n % 3 == 0 ? 3 : 1, nb = n / bs;
+    p->lo = (PetscInt)((long)nb * p->rank / p->size) * bs;
+    p->hi = (PetscInt)((long)nb * (p->rank + 1) / p->size) * bs;
+    const PetscInt m = p->hi - p->lo;
+    PetscInt *dn = calloc((size_t)m + 1, sizeof *dn), *on = calloc((size_t)m + 1, sizeof *on);
+    p->scale = malloc((size_t)n * sizeof *p->scale);
+    if (!dn || !on || !p->scale) {
+        free(dn); free(on);
+        return ffc__engine_fail(e, FFC_ERR_MEMORY, FFC_AT_COUNT, n, "PETSc: out of memory for the pattern (order %ld)",
+                                (long)n);
+    }
+    /* (the pattern's entries are distinct: one count each; a symmetric
+     * pattern's lower triangle stands for both) */
+    for (long k = 0; k < T->nz; k++)
+        for (int t = 0; t < 1 + (T->sym && T->i[k] != T->j[k]); t++) {
+            const PetscInt r = t ? T->j[k] : T->i[k], c = t ? T->i[k] : T->j[k];
+            if (r < p->lo || r >= p->hi) continue;
+            if (c >= p->lo && c < p->hi) dn[r - p->lo]++;
+            else on[r - p->lo]++;
+        }
+    for (PetscInt r = 0; r < m; r++) {
+        if (dn[r] > m) dn[r] = m;
+        if (on[r] > n - m) on[r] = n - m;
+    }
+    e->n = n;
+    PetscErrorCode ierr = MatCreate(p->comm, &p->A);
+    if (!ierr) ierr = MatSetSizes(p->A, m, m, n, n);
+    if (!ierr) ierr = MatSetType(p->A, MATAIJ);
+    if (!ierr) ierr = MatSetBlockSize(p->A, bs);
+    if (!ierr) ierr = MatSeqAIJSetPreallocation(p->A, 0, dn);
+    if (!ierr) ierr = MatMPIAIJSetPreallocation(p->A, 0, dn, 0, on);
+    if (!ierr) ierr = MatSetOption(p->A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE);
+    free(dn); free(on);
+    if (!ierr) ierr = MatCreateVecs(p->A, &p->x, &p->b);
+    if (!ierr) ierr = VecScatterCreateToAll(p->x, &p->toall, &p->xall);
+    if (ierr) return pfail(p, ierr, "the matrix's layout");
+    return FFC_OK;
+}
+
+/* The rigid-body modes of the nodes as GAMG's near-null space (a P1
+ * field: n = 3 nv, dof 3 i + c component c of node i). */
+static int near_null(ffc__pet *p)
+{
+    if (!p->xyz || p->base.n != 3 * p->opt.nv) return FFC_OK;
+    Vec c;
+    MatNullSpace ns;
+    TRY(MatCreateVecs(p->A, &c, NULL), "the nodes' coordinates");
+    PetscScalar *a;
+    TRY(VecGetArray(c, &a), "the nodes' coordinates");
+    for (PetscInt i = p->lo; i < p->hi; i++) a[i - p->lo] = p->xyz[i];
+    TRY(VecRestoreArray(c, &a), "the nodes' coordinates");
+    TRY(MatNullSpaceCreateRigidBody(c, &ns), "the rigid-body modes");
+    TRY(MatSetNearNullSpace(p->A, ns), "the rigid-body modes");
+    MatNullSpaceDestroy(&ns);
+    VecDestroy(&c);
+    return FFC_OK;
+}
+
+/* Formulation: the matrix handed over is A with each Dirichlet row (its
+ * diagonal a tgv, >= 1e20) divided by that diagonal, so that the row
+ * reads x_i = g_i and weighs in the residual's norm as the displacement
+ * it imposes (the right-hand side is scaled alike in solve); the
+ * preconditioner is built here, once per matrix: the multigrid
+ * hierarchy, or MUMPS's factors. */
+static int pet_factorize(ffc__engine *e, const ffc__tri *T)
+{
+    ffc__pet *p = (ffc__pet *)e;
+    const double t0 = ffc__seconds();
+    for (long i = 0; i < T->n; i++) p->scale[i] = 0.0;
+    for (long k = 0; k < T->nz; k++)
+        if (T->i[k] == T->j[k]) p->scale[T->i[k]] += T->v[k];
+    for (long i = 0; i < T->n; i++) p->scale[i] = fabs(p->scale[i]) >= 1e20 ? 1.0 / fabs(p->scale[i]) : 1.0;
+    TRY(MatZeroEntries(p->A), "the matrix's values");
+    for (long k = 0; k < T->nz; k++)
+        for (int t = 0; t < 1 + (T->sym && T->i[k] != T->j[k]); t++) {
+            const PetscInt r = t ? T->j[k] : T->i[k], c = t ? T->i[k] : T->j[k];
+            if (r < p->lo || r >= p->hi) continue;
+            const PetscScalar v = T->v[k] * p->scale[r];
+            TRY(MatSetValues(p->A, 1, &r, 1, &c, &v, ADD_VALUES), "the matrix's values");
+        }
+    TRY(MatAssemblyBegin(p->A, MAT_FINAL_ASSEMBLY), "the matrix's assembly");
+    TRY(MatAssemblyEnd(p->A, MAT_FINAL_ASSEMBLY), "the matrix's assembly");
+    int st = near_null(p);
+    if (st) return st;
+    if (!p->ksp) {
+        PC pc;
+        TRY(KSPCreate(p->comm, &p->ksp), "the Krylov solver");
+        TRY(KSPGetPC(p->ksp, &pc), "the preconditioner");
+        if (p->opt.pc == FFC_PC_MUMPS) {
+            TRY(KSPSetType(p->ksp, KSPPREONLY), "the direct solver");
+            TRY(PCSetType(pc, PCLU), "the direct solver");
+            TRY(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "MUMPS through PETSc");
+        } else {
+            TRY(KSPSetType(p->ksp, KSPGMRES), "GMRES");
+            TRY(KSPGMRESSetRestart(p->ksp, 100), "GMRES");
+            TRY(KSPSetPCSide(p->ksp, PC_RIGHT), "GMRES");
+            TRY(KSPSetNormType(p->ksp, KSP_NORM_UNPRECONDITIONED), "GMRES");
+            TRY(KSPSetTolerances(p->ksp, p->opt.rtol, 0.0, 1e10, (PetscInt)p->opt.maxit), "GMRES");
+            if (p->opt.pc == FFC_PC_HYPRE) {
+                TRY(PCSetType(pc, PCHYPRE), "BoomerAMG");
+                TRY(PCHYPRESetType(pc, "boomeramg"), "BoomerAMG");
+            } else {
+                TRY(PCSetType(pc, PCGAMG), "GAMG");
+            }
+        }
+        /* (PETSc's own options, from PETSC_OPTIONS, last: -ksp_monitor, a
+         * smoother, a threshold) */
+        TRY(KSPSetFromOptions(p->ksp), "PETSC_OPTIONS");
+    }
+    TRY(KSPSetOperators(p->ksp, p->A, p->A), "the operators");
+    PetscErrorCode ierr = KSPSetUp(p->ksp);
+    if (!ierr) {
+        PC pc;
+        KSPGetPC(p->ksp, &pc);
+        ierr = PCSetUp(pc);
+    }
+    if (ierr) {
+        drop_solver(p);
+        st = pfail(p, ierr, p->opt.pc == FFC_PC_MUMPS ? "MUMPS's factorization" : "the preconditioner's set-up");
+        if (ierr == PETSC_ERR_MAT_LU_ZRPVT) e->err.status = st = FFC_ERR_SINGULAR;
+        return st;
+    }
+    p->st.setups++;
+    p->st.t_setup += ffc__seconds() - t0;
+    e->factored = 1;
+    return FFC_OK;
+}
+
+static int pet_solve(ffc__engine *e, const double b[], double x[])
+{
+    ffc__pet *p = (ffc__pet *)e;
+    if (!e->factored) return ffc__engine_fail(e, FFC_ERR_VALUE, FFC_AT_COUNT, e->n, "PETSc: solve before a set-up");
+    const double t0 = ffc__seconds();
+    PetscScalar *a;
+    TRY(VecGetArray(p->b, &a), "the right-hand side");
+    for (PetscInt i = p->lo; i < p->hi; i++) a[i - p->lo] = b[i] * p->scale[i];
+    TRY(VecRestoreArray(p->b, &a), "the right-hand side");
+    TRY(KSPSolve(p->ksp, p->b, p->x), "the solve");
+    KSPConvergedReason why;
+    PetscInt its = 0;
+    KSPGetConvergedReason(p->ksp, &why);
+    KSPGetIterationNumber(p->ksp, &its);
+    p->st.solves++;
+    p->st.iterations += its;
+    p->st.last_iterations = its;
+    p->st.t_solve += ffc__seconds() - t0;
+    if (why < 0) {
+        PetscReal rn = 0, bn = 0;
+        KSPGetResidualNorm(p->ksp, &rn);
+        VecNorm(p->b, NORM_2, &bn);
+        return ffc__engine_fail(e, FFC_ERR_NOCONV, FFC_AT_COUNT, its,
+                                "PETSc: %s did not converge in %ld iterations (%s): residual %.3g of |b|, rtol %.3g",
+                                p->opt.pc == FFC_PC_MUMPS ? "MUMPS" : "GMRES", (long)its, KSPConvergedReasons[why],
+                                bn > 0 ? (double)(rn / bn) : 0.0, p->opt.rtol);
+    }
+    TRY(VecScatterBegin(p->toall, p->x, p->xall, INSERT_VALUES, SCATTER_FORWARD), "the solution's gathering");
+    TRY(VecScatterEnd(p->toall, p->x, p->xall, INSERT_VALUES, SCATTER_FORWARD), "the solution's gathering");
+    const PetscScalar *c;
+    TRY(VecGetArrayRead(p->xall, &c), "the solution");
+    memcpy(x, c, (size_t)e->n * sizeof *x);
+    TRY(VecRestoreArrayRead(p->xall, &c), "the solution");
+    return FFC_OK;
+}
+
+static int pet_inverse(ffc__engine *e, long nc, long cols[], long nrows, const long rows[], ffc__inv_sink sink,
+                       void *ctx)
+{
+    return ffc__inverse_by_solves(e, nc, cols, nrows, rows, sink, ctx);
+}
+
+static const ffc__engine_ops pet_ops = {"PETSc", pet_analyze, pet_factorize, pet_solve, pet_inverse, pet_agree,
+                                        pet_release, pet_free};
+
+int ffc__petsc_create(ffc_solve_info *info, const ffc_iterative *opt, ffc__engine **out)
+{
+    *out = NULL;
+    PetscBool up = PETSC_FALSE;
+    PetscInitialized(&up);
+    if (!up) {
+        /* PETSc leaves signals and errors to the caller: no handler of its
+         * own, no message printed (each error is returned) */
+        if (PetscOptionsSetValue(NULL, "-no_signal_handler", NULL)) return FFC_ERR_UNAVAILABLE;
+        if (PetscInitializeNoArguments()) return FFC_ERR_UNAVAILABLE;
+    }
+    PetscPushErrorHandler(PetscReturnErrorHandler, NULL);
+    ffc__pet *p = calloc(1, sizeof *p);
+    if (!p) return FFC_ERR_MEMORY;
+    p->base.op = &pet_ops;
+    p->base.info = info;
+    p->opt = *opt;
+    p->opt.xyz = NULL;
+    if (opt->xyz && opt->nv > 0) {
+        p->xyz = malloc((size_t)(3 * opt->nv) * sizeof *p->xyz);
+        if (!p->xyz) { free(p); return FFC_ERR_MEMORY; }
+        memcpy(p->xyz, opt->xyz, (size_t)(3 * opt->nv) * sizeof *p->xyz);
+    }
+    p->comm = PETSC_COMM_SELF;
+#ifdef FFC_MPI
+    if (opt->shared) p->comm = MPI_Comm_f2c((MPI_Fint)opt->fcomm);
+#endif
+    MPI_Comm_rank(p->comm, &p->rank);
+    MPI_Comm_size(p->comm, &p->size);
+    info->ranks = p->size;
+    *out = &p->base;
+    return FFC_OK;
+}
+
+int ffc__petsc_info(const ffc__engine *e, ffc_iterative_info *out)
+{
+    *out = ((const ffc__pet *)e)->st;
+    return FFC_OK;
+}
+
+int ffc_has_petsc(void) { return 1; }
+
+#else
+
+int ffc__petsc_create(ffc_solve_info *info, const ffc_iterative *opt, ffc__engine **out)
+{
+    (void)info; (void)opt;
+    *out = NULL;
+    return FFC_ERR_UNAVAILABLE;
+}
+
+int ffc__petsc_info(const ffc__engine *e, ffc_iterative_info *out)
+{
+    (void)e; (void)out;
+    return FFC_ERR_UNAVAILABLE;
+}
+
+int ffc_has_petsc(void) { return 0; }
+
+#endif
