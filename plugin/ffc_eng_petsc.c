@@ -27,6 +27,8 @@ typedef struct {
     Vec b, x, xall;            /* right-hand side and solution (distributed), the solution on every rank */
     VecScatter toall;
     double *scale;             /* [n] each row's factor: 1 / its diagonal on a tgv row, else 1 */
+    long nb, nbcap;            /* the block's dofs (count), its capacity */
+    long *block;               /* [nb] the dofs solved exactly after each multigrid cycle (ascending) */
     ffc_iterative_info st;     /* what the solves did */
 } ffc__pet;
 
@@ -79,6 +81,7 @@ static void pet_free(ffc__engine *e)
     ffc__pet *p = (ffc__pet *)e;
     drop_all(p);
     free(p->xyz);
+    free(p->block);
     free(p);
 }
 
@@ -147,6 +150,102 @@ static int near_null(ffc__pet *p)
     return FFC_OK;
 }
 
+/* The multigrid of opt.pc on pc */
+static int multigrid(ffc__pet *p, PC pc)
+{
+    if (p->opt.pc == FFC_PC_HYPRE) {
+        TRY(PCSetType(pc, PCHYPRE), "BoomerAMG");
+        TRY(PCHYPRESetType(pc, "boomeramg"), "BoomerAMG");
+    } else {
+        TRY(PCSetType(pc, PCGAMG), "GAMG");
+    }
+    return FFC_OK;
+}
+
+/* Formulation: the preconditioner of K + Kc where a block B of dofs is
+ * given (those the contact couples): one multigrid cycle M, then the
+ * block solved exactly on the residual left,
+ *   z = M^-1 r,  z += E (E' A E)^-1 E' (r - A z),
+ * E the columns of the identity on B (on several ranks each rank's share
+ * of B, its own block: block Jacobi between ranks). The penalty's springs
+ * make A's modes on B stiff and anisotropic (normal against tangential),
+ * which aggregation's smoothers do not reach; on B they are solved
+ * outright, and the multigrid keeps the bulk's smooth modes. */
+static int make_solver(ffc__pet *p)
+{
+    PC pc;
+    TRY(KSPCreate(p->comm, &p->ksp), "the Krylov solver");
+    TRY(KSPGetPC(p->ksp, &pc), "the preconditioner");
+    if (p->opt.pc == FFC_PC_MUMPS) {
+        TRY(KSPSetType(p->ksp, KSPPREONLY), "the direct solver");
+        TRY(PCSetType(pc, PCLU), "the direct solver");
+        TRY(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "MUMPS through PETSc");
+    } else {
+        TRY(KSPSetType(p->ksp, KSPGMRES), "GMRES");
+        TRY(KSPGMRESSetRestart(p->ksp, 100), "GMRES");
+        TRY(KSPSetPCSide(p->ksp, PC_RIGHT), "GMRES");
+        TRY(KSPSetNormType(p->ksp, KSP_NORM_UNPRECONDITIONED), "GMRES");
+        TRY(KSPSetTolerances(p->ksp, p->opt.rtol, 0.0, 1e10, (PetscInt)p->opt.maxit), "GMRES");
+        PetscInt nb = 0;
+        for (long k = 0; k < p->nb; k++) nb += p->block[k] >= p->lo && p->block[k] < p->hi;
+        long mine = nb, all = nb;
+        if (p->size > 1) MPI_Allreduce(&mine, &all, 1, MPI_LONG, MPI_SUM, p->comm);
+        if (all == 0) {
+            int st = multigrid(p, pc);
+            if (st) return st;
+        } else {
+            PC mg, bj;
+            IS is;
+            PetscInt *rows = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *rows), m = 0;
+            if (!rows) return ffc__engine_fail(&p->base, FFC_ERR_MEMORY, FFC_AT_COUNT, nb, "PETSc: out of memory for the block");
+            for (long k = 0; k < p->nb; k++)
+                if (p->block[k] >= p->lo && p->block[k] < p->hi) rows[m++] = (PetscInt)p->block[k];
+            PetscErrorCode ierr = ISCreateGeneral(PETSC_COMM_SELF, m, rows, PETSC_COPY_VALUES, &is);
+            free(rows);
+            if (ierr) return pfail(p, ierr, "the block");
+            TRY(PCSetType(pc, PCCOMPOSITE), "the composite preconditioner");
+            TRY(PCCompositeSetType(pc, PC_COMPOSITE_MULTIPLICATIVE), "the composite preconditioner");
+            TRY(PCCompositeAddPCType(pc, PCGAMG), "the composite preconditioner");
+            TRY(PCCompositeAddPCType(pc, PCASM), "the composite preconditioner");
+            TRY(PCCompositeGetPC(pc, 0, &mg), "the composite preconditioner");
+            TRY(PCCompositeGetPC(pc, 1, &bj), "the composite preconditioner");
+            int st = multigrid(p, mg);
+            if (st) { ISDestroy(&is); return st; }
+            TRY(PCASMSetLocalSubdomains(bj, 1, &is, NULL), "the block");
+            TRY(PCASMSetOverlap(bj, 0), "the block");
+            TRY(PCASMSetType(bj, PC_ASM_BASIC), "the block");
+            ISDestroy(&is);
+        }
+    }
+    /* (PETSc's own options, from PETSC_OPTIONS, last: -ksp_monitor, a
+     * smoother, a threshold) */
+    TRY(KSPSetFromOptions(p->ksp), "PETSC_OPTIONS");
+    return FFC_OK;
+}
+
+/* the block's sub-solver: an LU of E' A E (after the set-up made it) */
+static int block_lu(ffc__pet *p)
+{
+    PC pc, bj;
+    PCType t;
+    TRY(KSPGetPC(p->ksp, &pc), "the preconditioner");
+    TRY(PCGetType(pc, &t), "the preconditioner");
+    if (!t || strcmp(t, PCCOMPOSITE) != 0) return FFC_OK;
+    TRY(PCCompositeGetPC(pc, 1, &bj), "the block");
+    TRY(PCSetUp(bj), "the block");
+    KSP *sub = NULL;
+    PetscInt nl = 0, first = 0;
+    TRY(PCASMGetSubKSP(bj, &nl, &first, &sub), "the block");
+    for (PetscInt k = 0; k < nl && sub; k++) {
+        PC sp;
+        TRY(KSPSetType(sub[k], KSPPREONLY), "the block");
+        TRY(KSPGetPC(sub[k], &sp), "the block");
+        TRY(PCSetType(sp, PCLU), "the block's LU");
+        TRY(PCSetUp(sp), "the block's LU");
+    }
+    return FFC_OK;
+}
+
 /* Formulation: the matrix handed over is A with each Dirichlet row (its
  * diagonal a tgv, >= 1e20) divided by that diagonal, so that the row
  * reads x_i = g_i and weighs in the residual's norm as the displacement
@@ -173,31 +272,9 @@ static int pet_factorize(ffc__engine *e, const ffc__tri *T)
     TRY(MatAssemblyEnd(p->A, MAT_FINAL_ASSEMBLY), "the matrix's assembly");
     int st = near_null(p);
     if (st) return st;
-    if (!p->ksp) {
-        PC pc;
-        TRY(KSPCreate(p->comm, &p->ksp), "the Krylov solver");
-        TRY(KSPGetPC(p->ksp, &pc), "the preconditioner");
-        if (p->opt.pc == FFC_PC_MUMPS) {
-            TRY(KSPSetType(p->ksp, KSPPREONLY), "the direct solver");
-            TRY(PCSetType(pc, PCLU), "the direct solver");
-            TRY(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "MUMPS through PETSc");
-        } else {
-            TRY(KSPSetType(p->ksp, KSPGMRES), "GMRES");
-            TRY(KSPGMRESSetRestart(p->ksp, 100), "GMRES");
-            TRY(KSPSetPCSide(p->ksp, PC_RIGHT), "GMRES");
-            TRY(KSPSetNormType(p->ksp, KSP_NORM_UNPRECONDITIONED), "GMRES");
-            TRY(KSPSetTolerances(p->ksp, p->opt.rtol, 0.0, 1e10, (PetscInt)p->opt.maxit), "GMRES");
-            if (p->opt.pc == FFC_PC_HYPRE) {
-                TRY(PCSetType(pc, PCHYPRE), "BoomerAMG");
-                TRY(PCHYPRESetType(pc, "boomeramg"), "BoomerAMG");
-            } else {
-                TRY(PCSetType(pc, PCGAMG), "GAMG");
-            }
-        }
-        /* (PETSc's own options, from PETSC_OPTIONS, last: -ksp_monitor, a
-         * smoother, a threshold) */
-        TRY(KSPSetFromOptions(p->ksp), "PETSC_OPTIONS");
-    }
+    /* (made again for each matrix: the block changes with the contact) */
+    drop_solver(p);
+    if ((st = make_solver(p))) return st;
     TRY(KSPSetOperators(p->ksp, p->A, p->A), "the operators");
     PetscErrorCode ierr = KSPSetUp(p->ksp);
     if (!ierr) {
@@ -205,6 +282,7 @@ static int pet_factorize(ffc__engine *e, const ffc__tri *T)
         KSPGetPC(p->ksp, &pc);
         ierr = PCSetUp(pc);
     }
+    if (!ierr && (st = block_lu(p))) { drop_solver(p); return st; }
     if (ierr) {
         drop_solver(p);
         st = pfail(p, ierr, p->opt.pc == FFC_PC_MUMPS ? "MUMPS's factorization" : "the preconditioner's set-up");
@@ -302,6 +380,20 @@ int ffc__petsc_info(const ffc__engine *e, ffc_iterative_info *out)
     return FFC_OK;
 }
 
+int ffc__petsc_set_block(ffc__engine *e, long nb, const long dofs[])
+{
+    ffc__pet *p = (ffc__pet *)e;
+    if (nb > p->nbcap) {
+        long *b = realloc(p->block, (size_t)nb * sizeof *b);
+        if (!b) return FFC_ERR_MEMORY;
+        p->block = b;
+        p->nbcap = nb;
+    }
+    if (nb > 0) memcpy(p->block, dofs, (size_t)nb * sizeof *dofs);
+    p->nb = nb;
+    return FFC_OK;
+}
+
 int ffc_has_petsc(void) { return 1; }
 
 #else
@@ -316,6 +408,12 @@ int ffc__petsc_create(ffc_solve_info *info, const ffc_iterative *opt, ffc__engin
 int ffc__petsc_info(const ffc__engine *e, ffc_iterative_info *out)
 {
     (void)e; (void)out;
+    return FFC_ERR_UNAVAILABLE;
+}
+
+int ffc__petsc_set_block(ffc__engine *e, long nb, const long dofs[])
+{
+    (void)e; (void)nb; (void)dofs;
     return FFC_ERR_UNAVAILABLE;
 }
 

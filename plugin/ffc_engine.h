@@ -87,6 +87,9 @@ int ffc__mumps_create(ffc_solve_info *info, int fcomm, int sym, ffc__engine **ou
  * ffc__petsc_info: its counters. */
 int ffc__petsc_create(ffc_solve_info *info, const ffc_iterative *opt, ffc__engine **out);
 int ffc__petsc_info(const ffc__engine *e, ffc_iterative_info *out);
+/* the dofs[nb] (ascending, in [0, n)) its next set-ups solve exactly after
+ * each multigrid cycle (nb = 0: none) */
+int ffc__petsc_set_block(ffc__engine *e, long nb, const long dofs[]);
 
 /* CHOLMOD only (test hooks and statistics; nothing for another engine):
  * the factor's kind from the next factorization (supernodal = 1: CHOLMOD's

@@ -450,3 +450,13 @@ int ffc_full_iterative_info(const ffc_full *f, ffc_iterative_info *info)
     memset(info, 0, sizeof *info);
     return f->it.eng ? ffc__petsc_info(f->it.eng, info) : FFC_OK;
 }
+
+int ffc_full_set_block(ffc_full *f, long n, long nb, const long dofs[])
+{
+    if (!f || (nb > 0 && !dofs)) return FFC_ERR_NULL;
+    if (nb < 0 || nb > n) return FFC_ERR_SIZE;
+    for (long k = 0; k < nb; k++)
+        if (dofs[k] < 0 || dofs[k] >= n || (k > 0 && dofs[k] <= dofs[k - 1])) return FFC_ERR_INDEX;
+    if (!f->it.eng) return FFC_OK;
+    return ffc__petsc_set_block(f->it.eng, nb, dofs);
+}

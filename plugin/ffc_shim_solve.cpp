@@ -542,8 +542,11 @@ void iterative_path(const char *fn, SceneData &d)
 // factor the preconditioner of GMRES (at most reuse iterations) before a
 // new factorization; 0 solved, 1 singular (an exactly zero pivot; the
 // caller checks the residual, as a tiny pivot gives a huge x), 2 the
-// iterative path (solver = "iterative") did not converge in krylovMax
-basicAC_F0::name_and_type full_names[] = {{"symmetric", &typeid(long)}, {"reuse", &typeid(long)}};
+// iterative path (solver = "iterative") did not converge in krylovMax;
+// block = a real[int] of A's size: its nonzero entries name the dofs that
+// path's preconditioner solves exactly after each multigrid cycle (the
+// dofs the contact couples)
+basicAC_F0::name_and_type full_names[] = {{"symmetric", &typeid(long)}, {"reuse", &typeid(long)}, {"block", &typeid(KN<double> *)}};
 long sceneFullSolve(const Named &nm, FFScene *const &C, Matrice_Creuse<double> *const &A, KN<double> *const &b,
                     KN<double> *const &x)
 {
@@ -565,6 +568,16 @@ long sceneFullSolve(const Named &nm, FFScene *const &C, Matrice_Creuse<double> *
     if (!d.full && ffc_full_create(&d.full)) fail(fn, "out of memory for the full solver");
     ffc_full_set_reuse(d.full, reuse);
     iterative_path(fn, d);
+    if (nm.has(2)) {   // the iterative path's exact block: the dofs where block != 0
+        KN<double> *bk = nm.array(2);
+        if (!bk || bk->N() != n)
+            fail(fn, "argument 'block': size " + std::to_string(bk ? bk->N() : 0) + ", expected " + std::to_string(n));
+        std::vector<long> dofs;
+        for (long i = 0; i < n; i++)
+            if ((*bk)[i] != 0) dofs.push_back(i);
+        const int sb = ffc_full_set_block(d.full, n, (long)dofs.size(), dofs.data());
+        if (sb) fail(fn, std::string("argument 'block': ") + ffc_strerror(sb));
+    }
     std::vector<double> bv(n), xv(n);
     for (long i = 0; i < n; i++) bv[i] = (*b)[i];
     ffc_error err = {};

@@ -188,6 +188,14 @@ typedef struct {
 } ffc_iterative_info;
 int ffc_has_petsc(void);
 int ffc_full_set_iterative(ffc_full *f, const ffc_iterative *opt);
+/* The dofs[nb] (ascending, in [0, n)) that the iterative path's
+ * preconditioner solves exactly after each multigrid cycle, from the next
+ * solve on: those the contact couples (the rows of Kc), whose penalty
+ * springs multigrid alone resolves poorly (a multiplicative composite of
+ * the multigrid and an LU of A's block on them; on several ranks each
+ * rank's share); nb = 0: the multigrid alone.  FFC_ERR_INDEX for a dof
+ * out of range or out of order; nothing without the iterative path. */
+int ffc_full_set_block(ffc_full *f, long n, long nb, const long dofs[]);
 /* what the iterative path did (zeros before its first solve) */
 int ffc_full_iterative_info(const ffc_full *f, ffc_iterative_info *info);
 

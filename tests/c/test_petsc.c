@@ -2,7 +2,7 @@
  * against its direct one (UMFPACK) on an elastic box with an
  * unsymmetric coupling: GMRES with GAMG (the rigid-body modes), with
  * BoomerAMG, and MUMPS through PETSc; the residual it claims; the pattern
- * kept across matrices; non-convergence and bad options as statuses
+ * kept across matrices; an exact block after the multigrid; non-convergence and bad options as statuses
  * with a message; a build without PETSc says so. */
 #include <stdio.h>
 
@@ -122,6 +122,42 @@ static void test_patterns(void **state)
     ffc_full_free(f);
 }
 
+/* a block solved exactly after each multigrid cycle (the top face's
+ * dofs, where the coupling is): the same solution, in no more iterations
+ * than the multigrid alone; a bad block refused */
+static void test_block(void **state)
+{
+    (void)state;
+    if (!ffc_has_petsc()) skip();
+    static double x[PB_N];
+    static long dofs[PB_N];
+    long nb = 0;
+    for (int j = 0; j <= PB_C; j++)
+        for (int i = 0; i <= PB_C; i++)
+            for (int c = 0; c < 3; c++) dofs[nb++] = 3 * pb_node(i, j, PB_C) + c;
+    long its[2];
+    for (int b = 0; b < 2; b++) {
+        ffc_full *f = iterative(FFC_PC_GAMG, 1e-10, 500, 1);
+        assert_int_equal(ffc_full_set_block(f, PB_N, b ? nb : 0, dofs), FFC_OK);
+        assert_int_equal(ffc_full_solve(f, PB_N, sys.nt, sys.Ti, sys.Tj, sys.Tv, 0, sys.b, x, NULL), FFC_OK);
+        assert_true(pb_residual(&sys, x) <= 1e-10);
+        assert_true(pb_diff(x, x0) <= 1e-6);
+        ffc_iterative_info in;
+        ffc_full_iterative_info(f, &in);
+        its[b] = in.iterations;
+        if (b) {
+            long bad[2] = {5, 5};
+            assert_int_equal(ffc_full_set_block(f, PB_N, 2, bad), FFC_ERR_INDEX);
+            bad[1] = PB_N;
+            assert_int_equal(ffc_full_set_block(f, PB_N, 2, bad), FFC_ERR_INDEX);
+            assert_int_equal(ffc_full_set_block(f, PB_N, -1, bad), FFC_ERR_SIZE);
+        }
+        ffc_full_free(f);
+    }
+    printf("  GAMG: %ld iterations alone, %ld with the top face's block\n", its[0], its[1]);
+    assert_true(its[1] <= its[0]);
+}
+
 /* too few iterations: FFC_ERR_NOCONV, the message naming the iterations
  * and the residual reached; bad options refused, the solver unchanged */
 static void test_reasons(void **state)
@@ -165,7 +201,7 @@ static void test_reasons(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_same_solution), cmocka_unit_test(test_rigid_modes), cmocka_unit_test(test_patterns),
+        cmocka_unit_test(test_same_solution), cmocka_unit_test(test_rigid_modes), cmocka_unit_test(test_patterns), cmocka_unit_test(test_block),
         cmocka_unit_test(test_reasons),
     };
     return cmocka_run_group_tests(tests, setup, NULL);

@@ -1,8 +1,9 @@
 /* test_petsc_ranks.c: the iterative path (PETSc) with its rows shared
  * out over the ranks of MPI_COMM_WORLD (mpiexec, 2 ranks in make test):
  * the same solution as UMFPACK's in one process, on every rank, by GAMG
- * and BoomerAMG (within cond x rtol) and MUMPS through PETSc (round-off);
- * a non-convergence reported alike on every rank. */
+ * and BoomerAMG (within cond x rtol) and MUMPS through PETSc (round-off),
+ * and with an exact block; a non-convergence reported alike on every
+ * rank. */
 #include <stdio.h>
 
 #include <mpi.h>
@@ -56,6 +57,26 @@ static void test_same_solution(void **state)
     }
 }
 
+/* the top face's dofs solved exactly after each multigrid cycle, each
+ * rank its own share of them: the same solution */
+static void test_block(void **state)
+{
+    (void)state;
+    static double x[PB_N];
+    static long dofs[PB_N];
+    long nb = 0;
+    for (int j = 0; j <= PB_C; j++)
+        for (int i = 0; i <= PB_C; i++)
+            for (int c = 0; c < 3; c++) dofs[nb++] = 3 * pb_node(i, j, PB_C) + c;
+    /* (ascending: the top face's nodes are the last ones) */
+    ffc_full *f = iterative(FFC_PC_GAMG, 1e-10, 500);
+    assert_int_equal(ffc_full_set_block(f, PB_N, nb, dofs), FFC_OK);
+    assert_int_equal(ffc_full_solve(f, PB_N, sys.nt, sys.Ti, sys.Tj, sys.Tv, 0, sys.b, x, NULL), FFC_OK);
+    assert_true(pb_diff(x, x0) <= 1e-6);
+    assert_true(pb_residual(&sys, x) <= 1e-10);
+    ffc_full_free(f);
+}
+
 static void test_not_converged(void **state)
 {
     (void)state;
@@ -73,7 +94,8 @@ int main(int argc, char **argv)
     int rank;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     if (rank > 0 && !freopen("/dev/null", "w", stdout)) return 1; /* one report */
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_same_solution), cmocka_unit_test(test_not_converged)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_same_solution), cmocka_unit_test(test_block),
+                                       cmocka_unit_test(test_not_converged)};
     const int failed = cmocka_run_group_tests(tests, setup, NULL);
     MPI_Finalize();
     return failed;
