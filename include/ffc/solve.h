@@ -153,8 +153,9 @@ int ffc_full_reuse_info(const ffc_full *f, long *reused, long *krylov);
  * iterations) right-preconditioned by pc, converged at a true residual
  * of rtol |b| (Dirichlet rows of a tgv diagonal scaled by it), in this
  * process or (shared = 1, a build with MPI) with the rows shared out over
- * the ranks of the communicator fcomm, every rank passing the same system
- * and getting the whole solution.  pc: FFC_PC_GAMG, PETSc's
+ * the ranks of the communicator fcomm (with nodes given, in compact
+ * pieces: recursive coordinate bisection), every rank passing the same
+ * system and getting the whole solution.  pc: FFC_PC_GAMG, PETSc's
  * smoothed-aggregation multigrid, whose near-null space is the six
  * rigid-body modes of the nodes xyz[3 nv] (a displacement field, dof
  * 3 i + c component c of node i; xyz NULL: the three translations); FFC_PC_HYPRE, hypre's BoomerAMG; FFC_PC_MUMPS, a direct
