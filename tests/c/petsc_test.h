@@ -73,6 +73,17 @@ static inline void pb_make(pb_system *s)
     s->nt = nnz;
 }
 
+/* the top face's dofs into dofs[], ascending (the top nodes are the
+ * last ones); returns their count */
+static inline long pb_top_dofs(long dofs[])
+{
+    long nb = 0;
+    for (int j = 0; j <= PB_C; j++)
+        for (int i = 0; i <= PB_C; i++)
+            for (int c = 0; c < 3; c++) dofs[nb++] = 3 * pb_node(i, j, PB_C) + c;
+    return nb;
+}
+
 /* |S (b - A x)| / |S b|, S dividing the tgv rows by their diagonal */
 static inline double pb_residual(const pb_system *s, const double x[])
 {

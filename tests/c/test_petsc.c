@@ -131,10 +131,7 @@ static void test_block(void **state)
     if (!ffc_has_petsc()) skip();
     static double x[PB_N];
     static long dofs[PB_N];
-    long nb = 0;
-    for (int j = 0; j <= PB_C; j++)
-        for (int i = 0; i <= PB_C; i++)
-            for (int c = 0; c < 3; c++) dofs[nb++] = 3 * pb_node(i, j, PB_C) + c;
+    const long nb = pb_top_dofs(dofs);
     long its[2];
     for (int b = 0; b < 2; b++) {
         ffc_full *f = iterative(FFC_PC_GAMG, 1e-10, 500, 1);
