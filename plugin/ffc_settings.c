@@ -50,9 +50,8 @@ static const ffc_setting table[] = {
     {"preconditioner", FFC_SET_WORD, 0, 0, 0, 0, "gamg hypre mumps",
      "solver = iterative: GMRES preconditioned by GAMG with the rigid-body modes, by hypre's BoomerAMG, or a "
      "direct LU by MUMPS through PETSc"},
-    {"krylovTol", FFC_SET_REAL, 1e-12, 0, 1, 3, NULL,
-     "solver = iterative: true residual <= krylovTol x |b| (penalty-stiff contact rows: near the direct solve's "
-     "level, or Newton stalls)"},
+    {"krylovTol", FFC_SET_REAL, 1e-8, 0, 1, 3, NULL,
+     "solver = iterative: true residual <= krylovTol x |b| (the Dirichlet rows' values exact)"},
     {"krylovMax", FFC_SET_INT, 1000, 1, 100000, 0, NULL, "solver = iterative: Krylov iterations per solve at most"},
     {"condensed", FFC_SET_INT, 1, 0, 1, 0, NULL,
      "1: the factored path runs each Newton loop in C on the contact dofs (the condensed Newton)"},

@@ -151,7 +151,8 @@ int ffc_full_reuse_info(const ffc_full *f, long *reused, long *krylov);
 /* The iterative path: the general (sym = 0) systems of a full solver
  * handed to PETSc instead of UMFPACK: GMRES (restarted every 100
  * iterations) right-preconditioned by pc, converged at a true residual
- * of rtol |b| (Dirichlet rows of a tgv diagonal scaled by it), in this
+ * of rtol |b| (Dirichlet rows of a tgv diagonal scaled by it, their
+ * values then set exactly: b_i / tgv), in this
  * process or (shared = 1, a build with MPI) with the rows shared out over
  * the ranks of the communicator fcomm (with nodes given, in compact
  * pieces: recursive coordinate bisection), every rank passing the same
