@@ -161,6 +161,26 @@ static int renumber(ffc__pet *p, long n)
 #define ROW(p, i) ((p)->to ? (p)->to[i] : (i))
 #define DOF(p, r) ((p)->from ? (p)->from[r] : (r))
 
+/* The rigid-body modes of the nodes as GAMG's near-null space (a
+ * displacement field: n = 3 nv, dof 3 i + c component c of node i), set
+ * on A once per pattern (its values change, the nodes do not). */
+static int near_null(ffc__pet *p)
+{
+    if (!p->xyz || p->base.n != 3 * p->opt.nv) return FFC_OK;
+    Vec c;
+    MatNullSpace ns;
+    TRY(MatCreateVecs(p->A, &c, NULL), "the nodes' coordinates");
+    PetscScalar *a;
+    TRY(VecGetArray(c, &a), "the nodes' coordinates");
+    for (PetscInt i = p->lo; i < p->hi; i++) a[i - p->lo] = p->xyz[DOF(p, i)];
+    TRY(VecRestoreArray(c, &a), "the nodes' coordinates");
+    TRY(MatNullSpaceCreateRigidBody(c, &ns), "the rigid-body modes");
+    TRY(MatSetNearNullSpace(p->A, ns), "the rigid-body modes");
+    MatNullSpaceDestroy(&ns);
+    VecDestroy(&c);
+    return FFC_OK;
+}
+
 /* Rows are shared out in blocks of three (a node's dofs) when n is a
  * multiple of three, so that the block size and the rigid-body modes
  * hold on every rank. */
@@ -206,26 +226,7 @@ static int pet_analyze(ffc__engine *e, const ffc__tri *T)
     if (!ierr) ierr = MatCreateVecs(p->A, &p->x, &p->b);
     if (!ierr) ierr = VecScatterCreateToAll(p->x, &p->toall, &p->xall);
     if (ierr) return pfail(p, ierr, "the matrix's layout");
-    return FFC_OK;
-}
-
-/* The rigid-body modes of the nodes as GAMG's near-null space (a P1
- * field: n = 3 nv, dof 3 i + c component c of node i). */
-static int near_null(ffc__pet *p)
-{
-    if (!p->xyz || p->base.n != 3 * p->opt.nv) return FFC_OK;
-    Vec c;
-    MatNullSpace ns;
-    TRY(MatCreateVecs(p->A, &c, NULL), "the nodes' coordinates");
-    PetscScalar *a;
-    TRY(VecGetArray(c, &a), "the nodes' coordinates");
-    for (PetscInt i = p->lo; i < p->hi; i++) a[i - p->lo] = p->xyz[DOF(p, i)];
-    TRY(VecRestoreArray(c, &a), "the nodes' coordinates");
-    TRY(MatNullSpaceCreateRigidBody(c, &ns), "the rigid-body modes");
-    TRY(MatSetNearNullSpace(p->A, ns), "the rigid-body modes");
-    MatNullSpaceDestroy(&ns);
-    VecDestroy(&c);
-    return FFC_OK;
+    return near_null(p);
 }
 
 static int cmp_row(const void *a, const void *b)
@@ -287,20 +288,22 @@ static int make_solver(ffc__pet *p)
         TRY(KSPSetPCSide(p->ksp, PC_RIGHT), "GMRES");
         TRY(KSPSetNormType(p->ksp, KSP_NORM_UNPRECONDITIONED), "GMRES");
         TRY(KSPSetTolerances(p->ksp, p->opt.rtol, 0.0, 1e10, (PetscInt)p->opt.maxit), "GMRES");
-        PetscInt nb = 0;
-        for (long k = 0; k < p->nb; k++) nb += ROW(p, p->block[k]) >= p->lo && ROW(p, p->block[k]) < p->hi;
-        long mine = nb, all = nb;
+        /* this rank's rows of the block, ascending */
+        PetscInt *rows = malloc((size_t)(p->nb > 0 ? p->nb : 1) * sizeof *rows), m = 0;
+        if (!rows) return ffc__engine_fail(&p->base, FFC_ERR_MEMORY, FFC_AT_COUNT, p->nb, "PETSc: out of memory for the block");
+        for (long k = 0; k < p->nb; k++) {
+            const long r = ROW(p, p->block[k]);
+            if (r >= p->lo && r < p->hi) rows[m++] = (PetscInt)r;
+        }
+        qsort(rows, (size_t)m, sizeof *rows, cmp_row);
+        long mine = m, all = m;
         if (p->size > 1) MPI_Allreduce(&mine, &all, 1, MPI_LONG, MPI_SUM, p->comm);
         if (all == 0) {
+            free(rows);
             int st = multigrid(p, pc);
             if (st) return st;
         } else {
             PC mg, bj;
-            PetscInt *rows = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *rows), m = 0;
-            if (!rows) return ffc__engine_fail(&p->base, FFC_ERR_MEMORY, FFC_AT_COUNT, nb, "PETSc: out of memory for the block");
-            for (long k = 0; k < p->nb; k++)
-                if (ROW(p, p->block[k]) >= p->lo && ROW(p, p->block[k]) < p->hi) rows[m++] = (PetscInt)ROW(p, p->block[k]);
-            qsort(rows, (size_t)m, sizeof *rows, cmp_row);
             PetscErrorCode ierr = ISCreateGeneral(p->comm, m, rows, PETSC_COPY_VALUES, &p->bis);
             free(rows);
             if (ierr) return pfail(p, ierr, "the block");
@@ -366,11 +369,10 @@ static int pet_factorize(ffc__engine *e, const ffc__tri *T)
         }
     TRY(MatAssemblyBegin(p->A, MAT_FINAL_ASSEMBLY), "the matrix's assembly");
     TRY(MatAssemblyEnd(p->A, MAT_FINAL_ASSEMBLY), "the matrix's assembly");
-    int st = near_null(p);
-    if (st) return st;
     /* (made again for each matrix: the block changes with the contact) */
     drop_solver(p);
-    if ((st = make_solver(p))) return st;
+    int st = make_solver(p);
+    if (st) return st;
     TRY(KSPSetOperators(p->ksp, p->A, p->A), "the operators");
     PetscErrorCode ierr = KSPSetUp(p->ksp);
     if (!ierr) {
