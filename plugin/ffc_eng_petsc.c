@@ -37,14 +37,20 @@ typedef struct {
     ffc_iterative_info st;     /* what the solves did */
 } ffc__pet;
 
-/* a PETSc error turned into a status with its message */
+/* a PETSc error turned into a status with its message: out of memory,
+ * a zero pivot (singular), else FFC_ERR_VALUE (a set-up PETSc refused:
+ * an option from PETSC_OPTIONS, a preconditioner that cannot be built);
+ * FFC_ERR_NOCONV is kept for a Krylov solve that stopped short */
 static int pfail(ffc__pet *p, PetscErrorCode ierr, const char *what)
 {
     const char *text = NULL;
-    PetscErrorMessage(ierr, &text, NULL);
-    const int st = ierr == PETSC_ERR_MEM ? FFC_ERR_MEMORY : FFC_ERR_NOCONV;
+    char *detail = NULL;   /* (the error's own words, naming the value: preferred to the class's text) */
+    PetscErrorMessage(ierr, &text, &detail);
+    const int st = ierr == PETSC_ERR_MEM                                          ? FFC_ERR_MEMORY
+                   : ierr == PETSC_ERR_MAT_LU_ZRPVT || ierr == PETSC_ERR_MAT_CH_ZRPVT ? FFC_ERR_SINGULAR
+                                                                                   : FFC_ERR_VALUE;
     return ffc__engine_fail(&p->base, st, FFC_AT_COUNT, p->base.n, "PETSc: %s: %s (error %d)", what,
-                            text ? text : "unknown", (int)ierr);
+                            detail && *detail ? detail : text ? text : "unknown", (int)ierr);
 }
 #define TRY(call, what)                                  \
     do {                                                 \
@@ -383,9 +389,7 @@ static int pet_factorize(ffc__engine *e, const ffc__tri *T)
     if (!ierr && (st = block_setup(p))) { drop_solver(p); return st; }
     if (ierr) {
         drop_solver(p);
-        st = pfail(p, ierr, p->opt.pc == FFC_PC_MUMPS ? "MUMPS's factorization" : "the preconditioner's set-up");
-        if (ierr == PETSC_ERR_MAT_LU_ZRPVT) e->err.status = st = FFC_ERR_SINGULAR;
-        return st;
+        return pfail(p, ierr, p->opt.pc == FFC_PC_MUMPS ? "MUMPS's factorization" : "the preconditioner's set-up");
     }
     p->st.setups++;
     p->st.t_setup += ffc__seconds() - t0;

@@ -235,6 +235,7 @@ struct SceneData {
     std::vector<double> ntsM;  // ffcNTSSolve's multipliers, kept at the largest row count met (one call per solve)
     ffc_full *full = nullptr;  // ffcFullSolve's solver (its analysed pattern)
     std::string iterativeKey;  // the settings its iterative path was last set from (ffcFullSolve)
+    std::string solveMessage;  // why its last solve failed, in the engine's words ("" when it solved)
     // the hyperelastic bulk (ffcHyperForce, ffcHyperTangent): its node graph
     // (ffc_tets_pattern: rp[nn + 1], adj[nb]) and the tangent's rows and
     // columns (9 nb), made at the first call
@@ -355,6 +356,7 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name);
 long parallelSolve(Matrice_Creuse<double> *const &A, KN<double> *const &b, KN<double> *const &x);
 long sceneFullSolve(const Named &, FFScene *const &C, Matrice_Creuse<double> *const &A, KN<double> *const &b,
                     KN<double> *const &x);
+string *sceneSolveMessage(const Named &, FFScene *const &C);
 long parallelSolveOwn(Matrice_Creuse<double> *const &A, KN<double> *const &b, KN<double> *const &x, const long &own);
 long sceneNtsStep(const Named &, FFScene *const &C);
 long sceneRows(const Named &, FFScene *const &C, KN<double> *const &u, KN<double> *const &fixed,

@@ -582,12 +582,25 @@ long sceneFullSolve(const Named &nm, FFScene *const &C, Matrice_Creuse<double> *
     for (long i = 0; i < n; i++) bv[i] = (*b)[i];
     ffc_error err = {};
     const int st = ffc_full_solve(d.full, n, (long)Ti.size(), Ti.data(), Tj.data(), Tv.data(), (int)sym, bv.data(), xv.data(), &err);
+    d.solveMessage = st ? err.msg : "";
     if (st == FFC_ERR_SINGULAR) return 1;
     if (st == FFC_ERR_NOCONV) return 2;
-    if (st) fail(fn, std::string("argument 'A': ") + err.msg);
+    // (an entry of A the checks refused names the argument; an engine's
+    // failure, such as an option PETSc refused, speaks for itself)
+    if (st) fail(fn, err.msg[0] && err.where != FFC_AT_TRIPLET ? std::string(err.msg)
+                                                             : std::string("argument 'A': ") + (err.msg[0] ? err.msg : ffc_strerror(st)));
     x->resize(n);
     for (long i = 0; i < n; i++) (*x)[i] = xv[i];
     return 0;
+}
+
+// ffcSolveMessage(C): why the last ffcFullSolve did not solve, in the
+// engine's words ("" after one that did): the Krylov reason and the
+// residual reached where it returned 2
+string *sceneSolveMessage(const Named &nm, FFScene *const &C)
+{
+    SceneData &d = need_scene("ffcSolveMessage", C);
+    return Add2StackOfPtr2Free(nm.s, new string(d.solveMessage));
 }
 
 // Node-to-surface pairs. ffcNTSStep(C): a new load step (per-step flips,

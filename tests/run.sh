@@ -3,7 +3,8 @@
 # tests, prints what failed, and ends with one line "N passed, N failed".
 #   tests/edp/test_*.edp   must exit 0
 #   tests/edp/err_*.edp    must exit non-zero and print the text given on
-#                          their first line after "// expect: "
+#                          their first line after "// expect: " (run in the
+#                          environment a second line "// env: NAME='value'" sets)
 # Optional argument: a pattern that test names must contain.
 cd "$(dirname "$0")/.." || exit 2
 pat=${1:-}
@@ -114,7 +115,9 @@ for t in tests/edp/err_*.edp; do
     [ -f "$t" ] || continue
     case "$t" in *"$pat"*) ;; *) continue ;; esac
     want=$(sed -n '1s|^// expect: ||p' "$t")
-    sh scripts/ff "$t" >"$log" 2>&1
+    # (a second line "// env: NAME='value'" sets the environment it runs in)
+    setenv=$(sed -n '2s|^// env: ||p' "$t")
+    eval "env $setenv sh scripts/ff \"\$t\"" >"$log" 2>&1
     rc=$?
     if [ -n "$want" ] && [ "$rc" -ne 0 ] && [ "$rc" -lt 128 ] && grep -qF -- "$want" "$log"; then
         pass=$((pass + 1))
@@ -128,7 +131,8 @@ for t in tests/edp/test_*.edp tests/edp/err_*.edp; do
     [ -f "$t" ] || continue
     case "np2 $t" in *"$pat"*) ;; *) continue ;; esac
     [ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-    timeout 300 sh scripts/ff -np 2 "$t" >"$log" 2>&1
+    setenv=$(sed -n '2s|^// env: ||p' "$t")
+    eval "env $setenv timeout 300 sh scripts/ff -np 2 \"\$t\"" >"$log" 2>&1
     rc=$?
     case "$t" in
         */err_*) want=$(sed -n '1s|^// expect: ||p' "$t")
