@@ -1,6 +1,7 @@
 /* ffc_augment.c: the Uzawa update of the normal and tangential multipliers,
  * pointwise or nodal. */
 #include "ffc.h"
+#include "ffc_internal.h"
 #include "ffc_link_internal.h"
 
 #include <math.h>
@@ -9,6 +10,13 @@
 int ffc_augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
                 long nl, const ffc_link links[], double lambda[], double lam_t[],
                 const ffc_law *law, ffc_stats *stats, long *bad)
+{
+    return ffc__augment(effects, pair, qdeg, nl, links, lambda, lam_t, law, stats, NULL, bad);
+}
+
+int ffc__augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg, long nl, const ffc_link links[],
+                 double lambda[], double lam_t[], const ffc_law *law, ffc_stats *stats, signed char state[],
+                 long *bad)
 {
     long dummy;
     if (!bad) bad = &dummy;
@@ -42,6 +50,7 @@ int ffc_augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
             if (d > stats->max_dlam) stats->max_dlam = d;
             lambda[v] = w.tn[v];
             if (!fric) continue;
+            if (state) state[v] = (signed char)w.T[v].f.state;
             for (int i = 0; i < 3; i++) {
                 d = fabs(w.T[v].f.t[i] - lam_t[3 * v + i]);
                 if (d > stats->max_dlam_t) stats->max_dlam_t = d;
@@ -67,6 +76,7 @@ int ffc_augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg,
         double d = fabs(st.tn - lambda[k]);
         if (d > stats->max_dlam) stats->max_dlam = d;
         lambda[k] = st.tn;
+        if (fric && state) state[k] = (signed char)(lk->mf >= 0 ? st.fstate : FFC_FRIC_OPEN);
         if (fric)
             for (int i = 0; i < 3; i++) {
                 d = fabs(st.t[i] - lam_t[3 * k + i]);

@@ -66,6 +66,14 @@ int ffc__lu_solve(long m, double A[], long piv[], double b[]);
  * outside [0, n) or a non-finite value among (Ti, Tj, Tv)[nt], else FFC_OK */
 int ffc__check_triplets(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long *bad);
 
+/* ffc_augment with, where state is not NULL and the pair has friction,
+ * each multiplier's friction state as its update found it (FFC_FRIC_*:
+ * state[v] per slave node v of the nodal law, state[k] per link
+ * otherwise): slip where the trial traction left the Coulomb cone */
+int ffc__augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg, long nl, const ffc_link links[],
+                 double lambda[], double lam_t[], const ffc_law *law, ffc_stats *stats, signed char state[],
+                 long *bad);
+
 /* GMRES's Hessenberg column h[j + 2] (modified Gram-Schmidt's) turned
  * upper triangular: the earlier rotations (cs, sn)[j] applied, the new
  * one made and applied to it and to the residual vector g (g[j + 1] is

@@ -66,6 +66,8 @@ static void pair_free(scene_pair *p)
     free(p->lam_t);
     free(p->lam0);
     free(p->lam_t0);
+    free(p->fst);
+    free(p->fst0);
     free(p->nodes);
     free(p->nodes0);
     memset(p, 0, sizeof *p);
@@ -241,11 +243,15 @@ static int pair_alloc_lambda(scene_pair *p, long nv)
     const long n = p->o.nodal ? nv : p->nl;
     double *l = calloc(n, sizeof *l), *l0 = calloc(n, sizeof *l0), *lt = calloc(3 * n, sizeof *lt),
            *lt0 = calloc(3 * n, sizeof *lt0);
-    if (!l || !l0 || !lt || !lt0) {
-        free(l); free(l0); free(lt); free(lt0);
+    signed char *f = calloc(n > 0 ? n : 1, 1), *f0 = calloc(n > 0 ? n : 1, 1);
+    if (!l || !l0 || !lt || !lt0 || !f || !f0) {
+        free(l); free(l0); free(lt); free(lt0); free(f); free(f0);
         return FFC_ERR_MEMORY;
     }
-    free(p->lam); free(p->lam_t); free(p->lam0); free(p->lam_t0);
+    free(p->lam); free(p->lam_t); free(p->lam0); free(p->lam_t0); free(p->fst); free(p->fst0);
+    p->fst = f;
+    p->fst0 = f0;
+    p->fst_set = p->fst0_set = 0;
     p->nlam = n;
     p->lam = l;
     p->lam0 = l0;

@@ -452,8 +452,10 @@ int ffc_scene_augment(ffc_scene *s, const double u[], long *bad)
         scene_pair *p = &s->p[k];
         if (p->o.method == FFC_METHOD_NTS) continue;
         const pair_call c = ffc__pair_view(s, p, u, FFC_TANGENT_NONE);
-        int st = ffc_augment(&c.fx, &c.v, ffc__pair_qdeg(p), p->nl, p->links, p->lam, p->lam_t, &c.law, &p->st, bad);
+        int st = ffc__augment(&c.fx, &c.v, ffc__pair_qdeg(p), p->nl, p->links, p->lam, p->lam_t, &c.law, &p->st,
+                              p->fst, bad);
         if (st) return st;
+        p->fst_set = 1;
     }
     return FFC_OK;
 }
@@ -468,6 +470,8 @@ int ffc_scene_commit(ffc_scene *s, const double u[])
         scene_pair *p = &s->p[k];
         memcpy(p->lam0, p->lam, p->nlam * sizeof *p->lam);
         memcpy(p->lam_t0, p->lam_t, 3 * p->nlam * sizeof *p->lam_t);
+        memcpy(p->fst0, p->fst, (size_t)p->nlam);
+        p->fst0_set = p->fst_set;
         p->st_step = p->st;
         if (p->obst) { p->ob0 = p->ob; ffc__obstacle_motion(s, p); }
         if (p->nodes) {
@@ -485,6 +489,8 @@ int ffc_scene_restore(ffc_scene *s)
         scene_pair *p = &s->p[k];
         memcpy(p->lam, p->lam0, p->nlam * sizeof *p->lam);
         memcpy(p->lam_t, p->lam_t0, 3 * p->nlam * sizeof *p->lam_t);
+        memcpy(p->fst, p->fst0, (size_t)p->nlam);
+        p->fst_set = p->fst0_set;
         if (p->nodes) memcpy(p->nodes, p->nodes0, p->nn * sizeof *p->nodes);
     }
     return FFC_OK;
@@ -501,6 +507,9 @@ int ffc_scene_reset(ffc_scene *s)
         memset(p->lam0, 0, p->nlam * sizeof *p->lam0);
         memset(p->lam_t, 0, 3 * p->nlam * sizeof *p->lam_t);
         memset(p->lam_t0, 0, 3 * p->nlam * sizeof *p->lam_t0);
+        memset(p->fst, 0, (size_t)p->nlam);
+        memset(p->fst0, 0, (size_t)p->nlam);
+        p->fst_set = p->fst0_set = 0;
         memset(&p->st, 0, sizeof p->st);
         memset(&p->st_step, 0, sizeof p->st_step);
         if (p->obst) { p->ob0 = p->ob; ffc__obstacle_motion(s, p); }

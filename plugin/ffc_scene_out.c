@@ -123,6 +123,41 @@ long ffc_scene_npoints(const ffc_scene *s, int pair, int nodes)
     return n;
 }
 
+/* Pair p's rows P[nr] at the committed state (u = the last commit's):
+ * re-read there, where no slip has happened since, each traction passes
+ * the stick test (those that slid sit on the Coulomb cone); the state
+ * the step's last augmentation found (fst0) is the step's: slip where it
+ * was slip. Node rows (nodes = 1) follow the slave vertices in order;
+ * link rows take their facet's corners (nodal law) or their link's. */
+static int committed_states(const ffc_scene *s, const scene_pair *p, int node_rows, long nr, double P[])
+{
+    const int nper = s->nper;
+    if (node_rows) {
+        char *slave = calloc((size_t)s->nv, 1);   /* (a slave vertex: a row of ffc_points_nodes) */
+        if (!slave) return FFC_ERR_MEMORY;
+        for (long k = 0; k < p->nfs * nper; k++)
+            if (k % nper < 3) slave[p->Fs[k]] = 1;
+        long r = 0;
+        for (long v = 0; v < s->nv && r < nr; v++) {
+            if (!slave[v]) continue;
+            double *st = &P[r++ * FFC_POINT_COLS + FFC_PT_STATE];
+            if (*st != FFC_FRIC_OPEN && p->fst0[v] == FFC_FRIC_SLIP) *st = FFC_FRIC_SLIP;
+        }
+        free(slave);
+        return FFC_OK;
+    }
+    for (long k = 0; k < nr; k++) {
+        double *st = &P[k * FFC_POINT_COLS + FFC_PT_STATE];
+        if (*st == FFC_FRIC_OPEN) continue;
+        int slip = 0;
+        if (p->o.nodal)
+            for (int a = 0; a < 3; a++) slip |= p->fst0[p->Fs[p->links[k].sf * nper + a]] == FFC_FRIC_SLIP;
+        else slip = p->fst0[k] == FFC_FRIC_SLIP;
+        if (slip) *st = FFC_FRIC_SLIP;
+    }
+    return FFC_OK;
+}
+
 int ffc_scene_points(const ffc_scene *s, const double u[], int pair, int nodes, long cap, double P[], long *n,
                      long *bad)
 {
@@ -145,18 +180,22 @@ int ffc_scene_points(const ffc_scene *s, const double u[], int pair, int nodes, 
             continue;
         }
         const pair_call c = ffc__pair_view(s, p, u, FFC_TANGENT_NONE);
-        if (p->o.method == FFC_METHOD_MORTAR || nodes) {
+        const int node_rows = p->o.method == FFC_METHOD_MORTAR || nodes;
+        const long nr = node_rows ? p->nsn : p->nl;
+        int st;
+        if (node_rows) {
             long got;
-            int st = ffc_points_nodes(&c.fx, &c.v, p->o.method == FFC_METHOD_MORTAR ? 0 : ffc__pair_qdeg(p), p->nl,
-                                      p->links, p->lam, p->lam_t, &c.law, p->nsn, P + row * FFC_POINT_COLS, &got, bad);
-            if (st) return st;
-            row += p->nsn;
-            continue;
-        }
-        int st = ffc_points(&c.fx, &c.v, ffc__pair_qdeg(p), p->nl, p->links, p->lam, p->lam_t, &c.law,
+            st = ffc_points_nodes(&c.fx, &c.v, p->o.method == FFC_METHOD_MORTAR ? 0 : ffc__pair_qdeg(p), p->nl,
+                                  p->links, p->lam, p->lam_t, &c.law, p->nsn, P + row * FFC_POINT_COLS, &got, bad);
+        } else
+            st = ffc_points(&c.fx, &c.v, ffc__pair_qdeg(p), p->nl, p->links, p->lam, p->lam_t, &c.law,
                             P + row * FFC_POINT_COLS, bad);
         if (st) return st;
-        row += p->nl;
+        /* (fst0 holds OPEN alone where the pair has no friction) */
+        if (p->fst0_set && !memcmp(u, s->u_prev, 3 * (size_t)s->nv * sizeof *u) &&
+            (st = committed_states(s, p, node_rows, nr, P + row * FFC_POINT_COLS)))
+            return st;
+        row += nr;
     }
     return FFC_OK;
 }
