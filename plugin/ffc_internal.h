@@ -66,6 +66,11 @@ int ffc__lu_solve(long m, double A[], long piv[], double b[]);
  * outside [0, n) or a non-finite value among (Ti, Tj, Tv)[nt], else FFC_OK */
 int ffc__check_triplets(long n, long nt, const long Ti[], const long Tj[], const double Tv[], long *bad);
 
+/* the corner of link lk's slave facet nearest its point (the largest
+ * linear shape value) among those whose state[3] (FFC_FRIC_*) is not
+ * open; -1: all open */
+int ffc__nearest_corner(const ffc_link *lk, const int state[3]);
+
 /* ffc_augment with, where state is not NULL and the pair has friction,
  * each multiplier's friction state as its update found it (FFC_FRIC_*:
  * state[v] per slave node v of the nodal law, state[k] per link

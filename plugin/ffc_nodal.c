@@ -285,19 +285,33 @@ double ffc__nodal_point_pressure(const ffc_pair *P, const ffc_link *lk, const nl
     return t;
 }
 
+int ffc__nearest_corner(const ffc_link *lk, const int state[3])
+{
+    double L[FFC_MAXNODES];
+    ffc_shape(3, lk->xs, L, NULL);
+    int best = -1;
+    for (int a = 0; a < 3; a++)
+        if (state[a] != FFC_FRIC_OPEN && (best < 0 || L[a] > L[best])) best = a;
+    return best;
+}
+
 /* traction at a linked point: the interpolated nodal tractions; *state the
- * "largest" state of its nodes (slip > stick > open) */
+ * state of its nearest corner that is not open (ffc__nearest_corner: the
+ * points take their nodes' states over the nodes' tributary areas, so
+ * that a stick zone measured on points or on nodes is the same) */
 void ffc__nodal_point_traction(const ffc_pair *P, const ffc_link *lk, const nlink_t *e, const nfn_t T[],
                                double t[3], int *state)
 {
     t[0] = t[1] = t[2] = 0.0;
-    *state = FFC_FRIC_OPEN;
+    int corner[3];
     for (int a = 0; a < P->ns; a++) {
-        if (e->Nt[a] == 0.0) continue;
         const nfn_t *Ta = &T[P->Fs[lk->sf * P->ns + a]];
+        if (a < 3) corner[a] = Ta->f.state;
+        if (e->Nt[a] == 0.0) continue;
         for (int i = 0; i < 3; i++) t[i] += e->Nt[a] * Ta->f.t[i];
-        if (Ta->f.state > *state) *state = Ta->f.state;
     }
+    const int c = ffc__nearest_corner(lk, corner);
+    *state = c < 0 ? FFC_FRIC_OPEN : corner[c];
 }
 
 /* statistics of a linked point of the nodal law: pressure t (counted as

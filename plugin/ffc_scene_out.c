@@ -128,7 +128,8 @@ long ffc_scene_npoints(const ffc_scene *s, int pair, int nodes)
  * the stick test (those that slid sit on the Coulomb cone); the state
  * the step's last augmentation found (fst0) is the step's: slip where it
  * was slip. Node rows (nodes = 1) follow the slave vertices in order;
- * link rows take their facet's corners (nodal law) or their link's. */
+ * link rows take their nearest pressed corner's (nodal law) or their
+ * link's. */
 static int committed_states(const ffc_scene *s, const scene_pair *p, int node_rows, long nr, double P[])
 {
     const int nper = s->nper;
@@ -150,9 +151,12 @@ static int committed_states(const ffc_scene *s, const scene_pair *p, int node_ro
         double *st = &P[k * FFC_POINT_COLS + FFC_PT_STATE];
         if (*st == FFC_FRIC_OPEN) continue;
         int slip = 0;
-        if (p->o.nodal)
-            for (int a = 0; a < 3; a++) slip |= p->fst0[p->Fs[p->links[k].sf * nper + a]] == FFC_FRIC_SLIP;
-        else slip = p->fst0[k] == FFC_FRIC_SLIP;
+        if (p->o.nodal) {   /* (its nearest pressed corner's, as ffc_points does) */
+            int corner[3];
+            for (int a = 0; a < 3; a++) corner[a] = p->fst0[p->Fs[p->links[k].sf * nper + a]];
+            const int c = ffc__nearest_corner(&p->links[k], corner);
+            slip = c >= 0 && corner[c] == FFC_FRIC_SLIP;
+        } else slip = p->fst0[k] == FFC_FRIC_SLIP;
         if (slip) *st = FFC_FRIC_SLIP;
     }
     return FFC_OK;
