@@ -49,8 +49,8 @@ int ffc__augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg, lon
             double d = fabs(w.tn[v] - lambda[v]);
             if (d > stats->max_dlam) stats->max_dlam = d;
             lambda[v] = w.tn[v];
+            if (state) state[v] = (signed char)(fric ? w.T[v].f.state : FFC_FRIC_OPEN);
             if (!fric) continue;
-            if (state) state[v] = (signed char)w.T[v].f.state;
             for (int i = 0; i < 3; i++) {
                 d = fabs(w.T[v].f.t[i] - lam_t[3 * v + i]);
                 if (d > stats->max_dlam_t) stats->max_dlam_t = d;
@@ -76,7 +76,7 @@ int ffc__augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg, lon
         double d = fabs(st.tn - lambda[k]);
         if (d > stats->max_dlam) stats->max_dlam = d;
         lambda[k] = st.tn;
-        if (fric && state) state[k] = (signed char)(lk->mf >= 0 ? st.fstate : FFC_FRIC_OPEN);
+        if (state) state[k] = (signed char)(fric && lk->mf >= 0 ? st.fstate : FFC_FRIC_OPEN);
         if (fric)
             for (int i = 0; i < 3; i++) {
                 d = fabs(st.t[i] - lam_t[3 * k + i]);

@@ -37,10 +37,27 @@ typedef struct {
     ffc_iterative_info st;     /* what the solves did */
 } ffc__pet;
 
-/* a PETSc error turned into a status with its message: out of memory,
- * a zero pivot (singular), else FFC_ERR_VALUE (a set-up PETSc refused:
- * an option from PETSC_OPTIONS, a preconditioner that cannot be built);
- * FFC_ERR_NOCONV is kept for a Krylov solve that stopped short */
+/* 1: a PETSc error class that names a caller's mistake (an option from
+ * PETSC_OPTIONS PETSc refuses, an unknown type, an unsupported
+ * combination), not a failure of the numbers at hand */
+static int refused(PetscErrorCode ierr)
+{
+    switch (ierr) {
+    case PETSC_ERR_SUP: case PETSC_ERR_USER_INPUT: case PETSC_ERR_ARG_UNKNOWN_TYPE: case PETSC_ERR_ARG_WRONG:
+    case PETSC_ERR_ARG_OUTOFRANGE: case PETSC_ERR_ARG_INCOMP: case PETSC_ERR_ARG_TYPENOTSET: case PETSC_ERR_ARG_SIZ:
+    case PETSC_ERR_ARG_IDN: case PETSC_ERR_ARG_NOTSAMETYPE: case PETSC_ERR_ARG_NOTSAMECOMM:
+    case PETSC_ERR_ARG_WRONGSTATE: case PETSC_ERR_ARG_NULL: case PETSC_ERR_ARG_BADPTR: case PETSC_ERR_ARG_CORRUPT:
+        return 1;
+    default:
+        return 0;
+    }
+}
+
+/* a PETSc error turned into a status with its message: out of memory; a
+ * zero pivot (singular); FFC_ERR_VALUE where PETSc refused what it was
+ * asked (refused: the caller's to mend, an error); else FFC_ERR_NOCONV,
+ * as for a Krylov solve that stopped short (a failure of this matrix,
+ * the step cut and tried again smaller), the message kept */
 static int pfail(ffc__pet *p, PetscErrorCode ierr, const char *what)
 {
     const char *text = NULL;
@@ -48,7 +65,8 @@ static int pfail(ffc__pet *p, PetscErrorCode ierr, const char *what)
     PetscErrorMessage(ierr, &text, &detail);
     const int st = ierr == PETSC_ERR_MEM                                          ? FFC_ERR_MEMORY
                    : ierr == PETSC_ERR_MAT_LU_ZRPVT || ierr == PETSC_ERR_MAT_CH_ZRPVT ? FFC_ERR_SINGULAR
-                                                                                   : FFC_ERR_VALUE;
+                   : refused(ierr)                                                 ? FFC_ERR_VALUE
+                                                                                   : FFC_ERR_NOCONV;
     return ffc__engine_fail(&p->base, st, FFC_AT_COUNT, p->base.n, "PETSc: %s: %s (error %d)", what,
                             detail && *detail ? detail : text ? text : "unknown", (int)ierr);
 }

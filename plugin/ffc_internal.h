@@ -71,10 +71,10 @@ int ffc__check_triplets(long n, long nt, const long Ti[], const long Tj[], const
  * open; -1: all open */
 int ffc__nearest_corner(const ffc_link *lk, const int state[3]);
 
-/* ffc_augment with, where state is not NULL and the pair has friction,
- * each multiplier's friction state as its update found it (FFC_FRIC_*:
- * state[v] per slave node v of the nodal law, state[k] per link
- * otherwise): slip where the trial traction left the Coulomb cone */
+/* ffc_augment with, where state is not NULL, each multiplier's friction
+ * state as its update found it (FFC_FRIC_*: state[v] per slave node v of
+ * the nodal law, state[k] per link otherwise): slip where the trial
+ * traction left the Coulomb cone; open throughout without friction */
 int ffc__augment(const ffc_effects *effects, const ffc_pair *pair, int qdeg, long nl, const ffc_link links[],
                  double lambda[], double lam_t[], const ffc_law *law, ffc_stats *stats, signed char state[],
                  long *bad);

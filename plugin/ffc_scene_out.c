@@ -124,12 +124,13 @@ long ffc_scene_npoints(const ffc_scene *s, int pair, int nodes)
 }
 
 /* Pair p's rows P[nr] at the committed state (u = the last commit's):
- * re-read there, where no slip has happened since, each traction passes
- * the stick test (those that slid sit on the Coulomb cone); the state
- * the step's last augmentation found (fst0) is the step's: slip where it
- * was slip. Node rows (nodes = 1) follow the slave vertices in order;
- * link rows take their nearest pressed corner's (nodal law) or their
- * link's. */
+ * read again there, where no slip has happened since, each traction
+ * passes the stick test (those that slid sit on the Coulomb cone); each
+ * pressed row takes instead the state the step's last augmentation found
+ * (fst0) wherever that found it pressed. Node rows (nodes = 1) are the
+ * slave vertices in ascending order, as ffc_points_nodes writes them;
+ * link rows take their nearest pressed corner's (nodal law, as
+ * ffc_points does) or their link's. */
 static int committed_states(const ffc_scene *s, const scene_pair *p, int node_rows, long nr, double P[])
 {
     const int nper = s->nper;
@@ -142,7 +143,7 @@ static int committed_states(const ffc_scene *s, const scene_pair *p, int node_ro
         for (long v = 0; v < s->nv && r < nr; v++) {
             if (!slave[v]) continue;
             double *st = &P[r++ * FFC_POINT_COLS + FFC_PT_STATE];
-            if (*st != FFC_FRIC_OPEN && p->fst0[v] == FFC_FRIC_SLIP) *st = FFC_FRIC_SLIP;
+            if (*st != FFC_FRIC_OPEN && p->fst0[v] != FFC_FRIC_OPEN) *st = p->fst0[v];
         }
         free(slave);
         return FFC_OK;
@@ -150,14 +151,15 @@ static int committed_states(const ffc_scene *s, const scene_pair *p, int node_ro
     for (long k = 0; k < nr; k++) {
         double *st = &P[k * FFC_POINT_COLS + FFC_PT_STATE];
         if (*st == FFC_FRIC_OPEN) continue;
-        int slip = 0;
-        if (p->o.nodal) {   /* (its nearest pressed corner's, as ffc_points does) */
+        int found;
+        if (p->o.nodal) {
             int corner[3];
             for (int a = 0; a < 3; a++) corner[a] = p->fst0[p->Fs[p->links[k].sf * nper + a]];
             const int c = ffc__nearest_corner(&p->links[k], corner);
-            slip = c >= 0 && corner[c] == FFC_FRIC_SLIP;
-        } else slip = p->fst0[k] == FFC_FRIC_SLIP;
-        if (slip) *st = FFC_FRIC_SLIP;
+            found = c < 0 ? FFC_FRIC_OPEN : corner[c];
+        } else
+            found = p->fst0[k];
+        if (found != FFC_FRIC_OPEN) *st = found;
     }
     return FFC_OK;
 }

@@ -115,7 +115,8 @@ for t in tests/edp/err_*.edp; do
     [ -f "$t" ] || continue
     case "$t" in *"$pat"*) ;; *) continue ;; esac
     want=$(sed -n '1s|^// expect: ||p' "$t")
-    # (a second line "// env: NAME='value'" sets the environment it runs in)
+    # (a second line "// env: NAME='value'" sets the environment it runs in;
+    # the shell evaluates it: quote a value with spaces)
     setenv=$(sed -n '2s|^// env: ||p' "$t")
     eval "env $setenv sh scripts/ff \"\$t\"" >"$log" 2>&1
     rc=$?
