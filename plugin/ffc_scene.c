@@ -251,7 +251,6 @@ static int pair_alloc_lambda(scene_pair *p, long nv)
     free(p->lam); free(p->lam_t); free(p->lam0); free(p->lam_t0); free(p->fst); free(p->fst0);
     p->fst = f;
     p->fst0 = f0;
-    p->fst_set = p->fst0_set = 0;
     p->nlam = n;
     p->lam = l;
     p->lam0 = l0;

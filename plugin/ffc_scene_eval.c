@@ -455,7 +455,6 @@ int ffc_scene_augment(ffc_scene *s, const double u[], long *bad)
         int st = ffc__augment(&c.fx, &c.v, ffc__pair_qdeg(p), p->nl, p->links, p->lam, p->lam_t, &c.law, &p->st,
                               p->fst, bad);
         if (st) return st;
-        p->fst_set = 1;
     }
     return FFC_OK;
 }
@@ -471,7 +470,6 @@ int ffc_scene_commit(ffc_scene *s, const double u[])
         memcpy(p->lam0, p->lam, p->nlam * sizeof *p->lam);
         memcpy(p->lam_t0, p->lam_t, 3 * p->nlam * sizeof *p->lam_t);
         memcpy(p->fst0, p->fst, (size_t)p->nlam);
-        p->fst0_set = p->fst_set;
         p->st_step = p->st;
         if (p->obst) { p->ob0 = p->ob; ffc__obstacle_motion(s, p); }
         if (p->nodes) {
@@ -490,7 +488,6 @@ int ffc_scene_restore(ffc_scene *s)
         memcpy(p->lam, p->lam0, p->nlam * sizeof *p->lam);
         memcpy(p->lam_t, p->lam_t0, 3 * p->nlam * sizeof *p->lam_t);
         memcpy(p->fst, p->fst0, (size_t)p->nlam);
-        p->fst_set = p->fst0_set;
         if (p->nodes) memcpy(p->nodes, p->nodes0, p->nn * sizeof *p->nodes);
     }
     return FFC_OK;
@@ -509,7 +506,6 @@ int ffc_scene_reset(ffc_scene *s)
         memset(p->lam_t0, 0, 3 * p->nlam * sizeof *p->lam_t0);
         memset(p->fst, 0, (size_t)p->nlam);
         memset(p->fst0, 0, (size_t)p->nlam);
-        p->fst_set = p->fst0_set = 0;
         memset(&p->st, 0, sizeof p->st);
         memset(&p->st_step, 0, sizeof p->st_step);
         if (p->obst) { p->ob0 = p->ob; ffc__obstacle_motion(s, p); }

@@ -197,8 +197,9 @@ int ffc_scene_points(const ffc_scene *s, const double u[], int pair, int nodes, 
             st = ffc_points(&c.fx, &c.v, ffc__pair_qdeg(p), p->nl, p->links, p->lam, p->lam_t, &c.law,
                             P + row * FFC_POINT_COLS, bad);
         if (st) return st;
-        /* (fst0 holds OPEN alone where the pair has no friction) */
-        if (p->fst0_set && !memcmp(u, s->u_prev, 3 * (size_t)s->nv * sizeof *u) &&
+        /* (fst0 is all open where the pair has no friction or no step has
+         * been augmented: it changes no row) */
+        if (!memcmp(u, s->u_prev, 3 * (size_t)s->nv * sizeof *u) &&
             (st = committed_states(s, p, node_rows, nr, P + row * FFC_POINT_COLS)))
             return st;
         row += nr;

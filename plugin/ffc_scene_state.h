@@ -25,8 +25,7 @@ typedef struct {
     signed char *fst, *fst0; /* [nlam] friction: each multiplier's state (FFC_FRIC_*) at the last
                           augmentation, and at the last commit: what the step's end reports (read
                           again there, where nothing has slipped since, every traction passes the
-                          stick test) */
-    int fst_set, fst0_set; /* 1: fst, fst0 hold an augmentation's states */
+                          stick test); all open before any augmentation */
     ffc_stats st;      /* last assembly, with the augmentation's own fields
                           (max_dlam, max_dlam_t, max_pen_node) of the last augmentation */
     ffc_stats st_step; /* st at the last commit: the converged step's statistics */
