@@ -380,7 +380,7 @@ void ffc__bulk_info(const ffc__bulk *b, ffc_solve_info *info)
     if (b) *info = b->info;
     else {
         memset(info, 0, sizeof *info);
-        info->ranks = info->factor_ranks = info->factor_split = 1;
+        info->ranks = 1;
     }
 }
 

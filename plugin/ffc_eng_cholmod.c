@@ -5,7 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ffc_eng_cholmod.h"
+#include <suitesparse/cholmod.h>
+
+#include "ffc_engine.h"
 #include "ffc_internal.h"
 
 /* BLAS */
@@ -15,9 +17,38 @@ void dgemm_(const char *ta, const char *tb, const int *m, const int *n, const in
             const double *a, const int *lda, const double *b, const int *ldb, const double *beta, double *c,
             const int *ldc);
 
+enum { FFC__BLOCK = 128 };  /* inverse columns per block back-solve (128 against 64: the same at 44k dofs,
+                               about 10 % less at 141k) */
+
+typedef struct {
+    ffc__engine base;
+    ffc__ranks *rk;            /* the ranks holding the factor, each all of it (size 1: one process) */
+    int started;               /* cholmod_start called */
+    cholmod_common cc;
+    cholmod_factor *L;         /* NULL until the first analysis */
+    cholmod_dense *B, *X, *Y, *E;       /* one right-hand side and solve2's work */
+    cholmod_dense *Bb, *Xb, *Yb, *Eb;   /* a block of FFC__BLOCK right-hand sides (Bb zero between uses) */
+    /* the pruned solves of a supernodal factor (made with the factor) */
+    int prune;                 /* 1: the inverse by pruned solves when L is supernodal (default) */
+    int force_super;           /* 1: a supernodal L whatever its size (test hook; 0: CHOLMOD chooses) */
+    int *ipm;                  /* [n] position of each dof in L's order (the inverse of L->Perm) */
+    int *sn;                   /* [n] the supernode of each of L's columns */
+    int *spar;                 /* [nsuper] each supernode's parent in the supernodal elimination tree, or -1 */
+    int *sroot;                /* [nsuper] the root of each supernode's tree (one tree per part of the matrix
+                                  that nothing couples: each body, before contact) */
+    unsigned char *smark;      /* [nsuper] work: 1 on the supernodes a solve visits */
+    unsigned char *tmark;      /* [nsuper] work: 1 on the roots of the trees a block of columns lies in */
+    double *sw;                /* [swcap] work: a supernode's rows below its diagonal block x FFC__BLOCK */
+    long swcap;
+    double pshare;             /* the share of L's entries the last pruned backward solves visited */
+    double min_rcond;          /* a factor of estimated reciprocal condition below it is singular (1e-12;
+                                  0: only a failed factorization is, for matrices with tgv rows) */
+} ffc__chol;
+
 enum { INV_ENTRIES = 1 << 21 };   /* inverse values per piece (fewer columns per solve lost the pruning's gain) */
 
-int ffc__chol_all(const ffc__chol *c, int ok)
+/* ok on every rank holding the factor (a collective call; ok itself alone) */
+static int chol_all(const ffc__chol *c, int ok)
 {
     return c->rk->size > 1 ? ffc__mpi_min(c->rk->comm, ok) : ok;
 }
@@ -26,10 +57,10 @@ int ffc__chol_all(const ffc__chol *c, int ok)
  * FFC_ERR_MEMORY where another rank failed */
 static int agree(const ffc__chol *c, int st)
 {
-    return ffc__chol_all(c, st == FFC_OK) ? FFC_OK : st ? st : FFC_ERR_MEMORY;
+    return chol_all(c, st == FFC_OK) ? FFC_OK : st ? st : FFC_ERR_MEMORY;
 }
 
-static int chol_agree(const ffc__engine *e, int ok) { return ffc__chol_all((const ffc__chol *)e, ok); }
+static int chol_agree(const ffc__engine *e, int ok) { return chol_all((const ffc__chol *)e, ok); }
 
 /* drops the pruned solves' tree and work (made again with the next factor) */
 static void prune_free(ffc__chol *c)
@@ -48,10 +79,8 @@ static void numeric_free(ffc__chol *c)
     cholmod_dense **d[] = {&c->B, &c->X, &c->Y, &c->E, &c->Bb, &c->Xb, &c->Yb, &c->Eb};
     for (size_t k = 0; k < sizeof d / sizeof *d; k++)
         if (*d[k]) cholmod_free_dense(d[k], &c->cc);
-    ffc__chol_split_free(c);
     prune_free(c);
     c->base.factored = 0;
-    c->base.info->factor_ranks = c->base.info->factor_split = 1;
 }
 
 static void chol_release(ffc__engine *e)
@@ -66,7 +95,6 @@ static void chol_free(ffc__engine *e)
     ffc__chol *c = (ffc__chol *)e;
     chol_release(e);
     if (c->started) cholmod_finish(&c->cc);
-    ffc__chol_node_free(c);
     free(c);
 }
 
@@ -108,18 +136,15 @@ static int chol_analyze(ffc__engine *e, const ffc__tri *A)
     return FFC_OK;
 }
 
-int ffc__chol_conditioned(ffc__chol *c)
-{
-    c->base.info->rcond = cholmod_rcond(c->L, &c->cc);
-    return c->base.info->rcond >= c->min_rcond ? FFC_OK : FFC_ERR_SINGULAR;
-}
-
-int ffc__chol_numeric(ffc__chol *c, cholmod_sparse *A)
+/* the numeric factorization of A (lower, packed) into the analysed c->L,
+ * and its condition estimate (FFC_ERR_SINGULAR below c->min_rcond) */
+static int chol_numeric(ffc__chol *c, cholmod_sparse *A)
 {
     cholmod_factorize(A, c->L, &c->cc);
     if (c->cc.status == CHOLMOD_NOT_POSDEF || c->L->minor < c->L->n) return FFC_ERR_SINGULAR;
     if (c->cc.status < CHOLMOD_OK) return FFC_ERR_MEMORY;
-    return ffc__chol_conditioned(c);
+    c->base.info->rcond = cholmod_rcond(c->L, &c->cc);
+    return c->base.info->rcond >= c->min_rcond ? FFC_OK : FFC_ERR_SINGULAR;
 }
 
 static int chol_factorize(ffc__engine *e, const ffc__tri *A)
@@ -129,11 +154,7 @@ static int chol_factorize(ffc__engine *e, const ffc__tri *A)
     numeric_free(c);
     cholmod_sparse *S = to_sparse(c, A);
     int st = agree(c, S ? FFC_OK : FFC_ERR_MEMORY);
-    if (!st) {
-        /* one factorization per machine when every rank has a machine-mate */
-        const int node = c->rk->size > 1 && ffc__chol_all(c, c->L->is_super && c->nsize > 1);
-        st = node ? ffc__chol_numeric_on_node(c, S) : ffc__chol_numeric(c, S);
-    }
+    if (!st) st = chol_numeric(c, S);
     if (S) cholmod_free_sparse(&S, &c->cc);
     if (!st) {
         c->B = cholmod_zeros((size_t)A->n, 1, CHOLMOD_REAL, &c->cc);
@@ -148,8 +169,6 @@ static int chol_factorize(ffc__engine *e, const ffc__tri *A)
         return ffc__engine_fail(e, st, FFC_AT_COUNT, A->n, "CHOLMOD: out of memory factorizing a matrix of order "
                                 "%ld with %ld entries", A->n, A->nz);
     e->factored = 1;
-    e->info->factor_ranks = c->spart ? c->nsize : 1;
-    e->info->factor_split = c->spart ? c->split : 1;
     return FFC_OK;
 }
 
@@ -157,16 +176,10 @@ static int chol_solve(ffc__engine *e, const double rhs[], double y[])
 {
     ffc__chol *c = (ffc__chol *)e;
     if (!e->factored) return ffc__engine_fail(e, FFC_ERR_EMPTY, FFC_AT_NONE, -1, "CHOLMOD: not factorized");
-    int st;
-    if (c->spart) {   /* (the ranks of the machine split it) */
-        st = agree(c, ffc__chol_split_solve(c, rhs, y));
-        e->info->split_solves += st == FFC_OK;
-    } else {
-        memcpy(c->B->x, rhs, (size_t)e->n * sizeof(double));
-        const int ok = cholmod_solve2(CHOLMOD_A, c->L, c->B, NULL, &c->X, NULL, &c->Y, &c->E, &c->cc);
-        st = agree(c, ok ? FFC_OK : FFC_ERR_MEMORY);
-        if (!st) memcpy(y, c->X->x, (size_t)e->n * sizeof(double));
-    }
+    memcpy(c->B->x, rhs, (size_t)e->n * sizeof(double));
+    const int ok = cholmod_solve2(CHOLMOD_A, c->L, c->B, NULL, &c->X, NULL, &c->Y, &c->E, &c->cc);
+    const int st = agree(c, ok ? FFC_OK : FFC_ERR_MEMORY);
+    if (!st) memcpy(y, c->X->x, (size_t)e->n * sizeof(double));
     if (st) return ffc__engine_fail(e, st, FFC_AT_COUNT, e->n, "CHOLMOD: out of memory in a solve of order %ld",
                                     e->n);
     return FFC_OK;
@@ -424,8 +437,6 @@ int ffc__cholmod_create(ffc_solve_info *info, ffc__ranks *ranks, ffc__engine **o
     c->prune = 1;
     c->min_rcond = 1e-12;
     info->ranks = ranks->size;
-    info->factor_ranks = info->factor_split = 1;
-    ffc__chol_node_init(c);
     *out = &c->base;
     return FFC_OK;
 }

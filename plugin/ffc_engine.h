@@ -73,9 +73,8 @@ struct ffc__engine {
 
 /* The engines.  info: the counters it adds to (kept by the caller, who
  * outlives the engine).  CHOLMOD on one process, or on every rank of
- * ranks->comm (ranks->size > 1: each holding the whole factor, the ranks
- * of one machine making it together by subtrees, the inverse's columns
- * shared out; ranks stays the caller's); UMFPACK on one process; MUMPS
+ * ranks->comm (ranks->size > 1: each making and holding the whole
+ * factor, the inverse's columns shared out; ranks stays the caller's); UMFPACK on one process; MUMPS
  * over the ranks of fcomm (sym: 1 LDL^T of a symmetric positive definite
  * matrix, 0 LU).  FFC_ERR_UNAVAILABLE for MUMPS in a build without MPI or
  * before MPI_Init. */

@@ -152,21 +152,6 @@ void ffc__dual_matrix(const ffc__dual_moments *m, double A[3][3]);
 int ffc__mpi_ranks(int fcomm, int *rank, int *size);
 int ffc__mpi_min(int fcomm, int v);
 int ffc__mpi_allgather(int fcomm, double buf[], const long count[]);
-/* The ranks of fcomm on this process's machine (shared memory), as a new
- * communicator *ncomm (its Fortran handle; ffc__mpi_comm_free), with this
- * rank and their count there (one process: 0 and 1, no communicator).
- * n doubles broadcast from rank 0 of fcomm, the other ranks waiting
- * without spinning (leaving their cores to rank 0's threads). */
-int ffc__mpi_node(int fcomm, int *ncomm, int *rank, int *size);
-void ffc__mpi_comm_free(int fcomm);
-int ffc__mpi_bcast_idle(int fcomm, double v[], int n);
-/* n doubles broadcast from rank root of fcomm to its other ranks (every
- * rank waits in MPI's own way) */
-int ffc__mpi_bcast_from(int fcomm, int root, double v[], long n);
-/* The BLAS's threads set to n (n <= 0: unchanged); returns the count
- * before, or 0 when the BLAS is not OpenBLAS (nothing changed). */
-int ffc__blas_threads(int n);
-
 /* a monotonic clock (seconds) */
 double ffc__seconds(void);
 

@@ -1,12 +1,8 @@
 /* ffc_mpi.c: the ranks of MPI_COMM_WORLD, reductions and gathers over them,
- * the ranks of one machine, the BLAS's threads, and this process's peak
- * memory (a build without -DFFC_MPI is one rank). */
-#define _GNU_SOURCE /* RTLD_DEFAULT, nanosleep */
-#include <dlfcn.h>
+ * and this process's peak memory (a build without -DFFC_MPI is one rank). */
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
-#include <time.h>
 
 #include "ffc.h"
 #include "ffc_internal.h"
@@ -164,57 +160,6 @@ int ffc__mpi_allgather(int fcomm, double buf[], const long count[])
     return st;
 }
 
-int ffc__mpi_node(int fcomm, int *ncomm, int *rank, int *size)
-{
-    *ncomm = 0;
-    *rank = 0;
-    *size = 1;
-    if (!running()) return FFC_OK;
-    MPI_Comm c;
-    if (MPI_Comm_split_type(MPI_Comm_f2c((MPI_Fint)fcomm), MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &c) !=
-        MPI_SUCCESS)
-        return FFC_ERR_UNAVAILABLE;
-    MPI_Comm_rank(c, rank);
-    MPI_Comm_size(c, size);
-    *ncomm = (int)MPI_Comm_c2f(c);
-    return FFC_OK;
-}
-
-void ffc__mpi_comm_free(int fcomm)
-{
-    if (!running()) return;
-    MPI_Comm c = MPI_Comm_f2c((MPI_Fint)fcomm);
-    MPI_Comm_free(&c);
-}
-
-int ffc__mpi_bcast_idle(int fcomm, double v[], int n)
-{
-    if (!running()) return FFC_OK;
-    MPI_Request rq;
-    if (MPI_Ibcast(v, n, MPI_DOUBLE, 0, MPI_Comm_f2c((MPI_Fint)fcomm), &rq) != MPI_SUCCESS) return FFC_ERR_UNAVAILABLE;
-    for (int done = 0; !done;) {
-        /* a rank waiting for another's long computation yields its core
-         * to it (MPI's own wait would spin on it) */
-        if (MPI_Test(&rq, &done, MPI_STATUS_IGNORE) != MPI_SUCCESS) return FFC_ERR_UNAVAILABLE;
-        if (!done) {
-            const struct timespec pause = {0, 500000};   /* 0.5 ms */
-            nanosleep(&pause, NULL);
-        }
-    }
-    return FFC_OK;
-}
-
-int ffc__mpi_bcast_from(int fcomm, int root, double v[], long n)
-{
-    if (!running()) return FFC_OK;
-    const MPI_Comm c = MPI_Comm_f2c((MPI_Fint)fcomm);
-    for (long k = 0; k < n; k += 1L << 27) {   /* (MPI's counts are int: pieces of 1 GB) */
-        const long m = n - k < (1L << 27) ? n - k : (1L << 27);
-        if (MPI_Bcast(v + k, (int)m, MPI_DOUBLE, root, c) != MPI_SUCCESS) return FFC_ERR_UNAVAILABLE;
-    }
-    return FFC_OK;
-}
-
 #else
 
 int ffc_mpi_world(int *rank, int *size, int *fcomm)
@@ -262,41 +207,7 @@ int ffc__mpi_allgather(int fcomm, double buf[], const long count[])
     return FFC_OK;
 }
 
-int ffc__mpi_node(int fcomm, int *ncomm, int *rank, int *size)
-{
-    (void)fcomm;
-    *ncomm = 0;
-    *rank = 0;
-    *size = 1;
-    return FFC_OK;
-}
-
-void ffc__mpi_comm_free(int fcomm) { (void)fcomm; }
-
-int ffc__mpi_bcast_idle(int fcomm, double v[], int n)
-{
-    (void)fcomm; (void)v; (void)n;
-    return FFC_OK;
-}
-
-int ffc__mpi_bcast_from(int fcomm, int root, double v[], long n)
-{
-    (void)fcomm; (void)root; (void)v; (void)n;
-    return FFC_OK;
-}
-
 #endif
-
-int ffc__blas_threads(int n)
-{
-    /* OpenBLAS's own calls, found in the process (none: another BLAS, left alone) */
-    union { void *p; int (*f)(void); } get = {dlsym(RTLD_DEFAULT, "openblas_get_num_threads")};
-    union { void *p; void (*f)(int); } set = {dlsym(RTLD_DEFAULT, "openblas_set_num_threads")};
-    if (!get.p || !set.p) return 0;
-    const int old = get.f();
-    if (n > 0) set.f(n);
-    return old;
-}
 
 double ffc_peak_mb(void)
 {

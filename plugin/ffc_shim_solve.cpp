@@ -426,8 +426,6 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
     if (k == "columnsTime") return in.t_columns;
     if (k == "backsolveTime") return in.t_backsolves;
     if (k == "reused") return in.reused;
-    if (k == "factorRanks") return in.factor_ranks;
-    if (k == "factorSplit") return in.factor_split;
     if (k.compare(0, 4, "full") == 0) {   // ffcFullSolve's
         ffc_solve_info fi = {};
         long an = 0, ch = 0, npd = 0;
@@ -451,7 +449,7 @@ double sceneSolverStat(const Named &, FFScene *const &C, string *const &name)
         if (k == "iterativeSetupTime") return it.t_setup;
         if (k == "iterativeSolveTime") return it.t_solve;
     }
-    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, shiftedDofs, rcond, residual, newtonIterations, evaluations, evaluationsShared, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, backsolveTime, reused, factorRanks, factorSplit, fullFactorizations, fullCholesky, fullNotPosdef, fullAnalyses, fullReused, fullKrylov, iterativeSetups, iterativeSolves, iterativeIterations, iterativeLast, iterativeSetupTime, iterativeSolveTime");
+    fail(fn, "argument 'name': \"" + k + "\" is not one of factorizations, columns, solves, backsolves, refinements, keptLU, contactDofs, shift, shiftedDofs, rcond, residual, newtonIterations, evaluations, evaluationsShared, evalTime, fallbacks, condensedDofs, support, ranks, factorMB, factorMBmax, factorTime, columnsTime, backsolveTime, reused, fullFactorizations, fullCholesky, fullNotPosdef, fullAnalyses, fullReused, fullKrylov, iterativeSetups, iterativeSolves, iterativeIterations, iterativeLast, iterativeSetupTime, iterativeSolveTime");
     return 0;
 }
 

@@ -49,12 +49,7 @@ typedef struct {
     double t_factor;     /* wall time of the factorizations (seconds) */
     double t_columns;    /* wall time of the compliance columns (seconds) */
     long reused;         /* condensed Newton calls whose first solve was the last call's closing one (count) */
-    int factor_ranks;    /* CHOLMOD on every rank: the ranks of this machine that made the factor together, each
-                            then holding all of it (1: this rank made its own) */
-    int factor_split;    /* of them, the ranks that made the last factorization's subtrees, each its share,
-                            before the supernodes above them (1: one rank made it all) */
     double t_backsolves; /* wall time of the single back-solves (seconds) */
-    long split_solves;   /* of those, the ones the machine's ranks split by the factor's subtrees (count) */
 } ffc_solve_info;
 
 /* Sets K from its triplets (Ti, Tj, Tv)[nt] (both triangles; duplicates

@@ -375,16 +375,13 @@ static void test_shared_lu(void **state)
  * and H (same bits) as one process's computing them all, in the same
  * order; C grown in two calls (72 columns, two blocks of solves on one
  * process; then 30: the shares are uneven on 4 ranks), some columns
- * outside the rows R.  The ranks (one machine) make one factor: each
- * makes its share of the subtrees of the supernodal tree, rank 0 the
- * supernodes above them with their BLAS threads, and the values are
- * broadcast so that every rank holds all of it.  Without Dirichlet rows
- * (tgv 0) K is singular: the factorization fails, and every rank returns
- * it, as one process does.  Two lattices (bodies = 2: L's forest has a
- * tree for each) take shares of equal work, by the trees' backward
- * solves.  Tolerance: the same solves of factors whose sums differ in
- * order (CHOLMOD's and ffc_super.c's), 1e-14 of K^-1's largest entry (K's
- * condition below 1e3). */
+ * outside the rows R.  Every rank makes the whole factor.  Without
+ * Dirichlet rows (tgv 0) K is singular: the factorization fails, and
+ * every rank returns it, as one process does.  Two lattices (bodies = 2:
+ * L's forest has a tree for each) take shares of equal work, by the
+ * trees' backward solves.  Tolerance: the same factor's solves in blocks
+ * of other widths, 1e-14 of K^-1's largest entry (K's condition below
+ * 1e3). */
 static void replicated_columns(double tgv, int bodies)
 {
     enum { LN = 6, NT = 80 * LN * LN * LN, C1 = LATTICE_C1, C2 = LATTICE_C2, CT = C1 + C2 };
@@ -425,8 +422,6 @@ static void replicated_columns(double tgv, int bodies)
     ffc_solve_info in;
     ffc__bulk_info(b[1], &in);
     assert_int_equal(in.ranks, ranks);
-    assert_int_equal(in.factor_ranks, ranks);   /* (mpiexec on one machine) */
-    assert_int_equal(in.factor_split, ranks);   /* (its subtrees made by the ranks, ffc_super.c) */
     assert_int_equal(in.columns, CT);
     assert_int_equal(in.factorizations, 1);
     if (ranks > 1) assert_true(in.backsolves < CT);   /* each rank solved its share only */
@@ -450,22 +445,18 @@ static void replicated_columns(double tgv, int bodies)
     }
     assert_close(rank_spread(CT * CT + NR * CT + CT, g), 0.0, 0.0);
     free(g);
-    /* a single back-solve: split by the ranks' sets of subtrees (and the
-     * supernodes above them: one lattice's top separator, or none for two
-     * bodies on 2 ranks) against one process's CHOLMOD solve; the same
-     * factor's solves in another order: 1e-13 of the solution (K's
-     * condition below 1e3), and a residual that needs no iterative
-     * refinement (which would mend a wrong solve); every rank the same
-     * bits */
+    /* a single back-solve on every rank against one process's: 1e-13 of
+     * the solution (K's condition below 1e3), a residual that needs no
+     * iterative refinement (which would mend a wrong solve), and every
+     * rank the same bits */
     double *rhs = malloc(3 * LD * sizeof(double)), *xs0 = rhs + LD, *xs1 = xs0 + LD;
     uint64_t seed = 17;
     for (long i = 0; i < LD; i++) rhs[i] = test_rand(&seed, -1, 1);
     assert_int_equal(ffc__bulk_solve(b[0], 0, NULL, NULL, NULL, rhs, xs0, &bad), FFC_OK);
     ffc__bulk_info(b[1], &in);
-    const long split0 = in.split_solves, refined0 = in.refinements;
+    const long refined0 = in.refinements;
     assert_int_equal(ffc__bulk_solve(b[1], 0, NULL, NULL, NULL, rhs, xs1, &bad), FFC_OK);
     ffc__bulk_info(b[1], &in);
-    if (ranks > 1) assert_true(in.split_solves > split0);
     assert_int_equal(in.refinements, refined0);   /* (its residual below 1e-13 at once: no correction) */
     double xm = 0.0;
     d = 0.0;
