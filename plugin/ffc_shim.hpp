@@ -76,6 +76,8 @@ long ffcSaveVTK(string *const &file, KNM<double> *const &P);
 long ffcWriteColumns(string *const &file, string *const &header, KNM<double> *const &A,
                      KN<double> *const &mask);
 long ffcInverted(pmesh3 const &pTh, KN<double> *const &u);
+double ffcMeshQuality(pmesh3 const &pTh);
+long ffcMeshQualityBelow(pmesh3 const &pTh, double const &q);
 double ffcTime();
 long ffcRank();
 long ffcRanks();

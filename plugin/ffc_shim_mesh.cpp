@@ -335,6 +335,37 @@ long ffcInverted(pmesh3 const &pTh, KN<double> *const &u)
     return st == FFC_OK ? -1 : bad;
 }
 
+// ffcMeshQuality(Th): the lowest mean ratio of Th's tetrahedra (1 regular,
+// 0 flat); ffcMeshQuality(Th, q): how many lie below q.
+namespace {
+
+void meshQuality(const char *fn, pmesh3 const &pTh, double q, double *worst, long *below)
+{
+    const Mesh3 &Th = need_mesh(fn, pTh);
+    MeshArrays m;
+    mesh_arrays(Th, m);
+    long bad = -1;
+    const int st = ffc_mesh_quality(m.nt, m.T.data(), m.nv, m.X.data(), q, worst, &bad, below);
+    if (st) fail(fn, "tetrahedron " + std::to_string(bad) + ": " + ffc_strerror(st));
+}
+
+} // namespace
+double ffcMeshQuality(pmesh3 const &pTh)
+{
+    double worst;
+    long below;
+    meshQuality("ffcMeshQuality", pTh, 0.0, &worst, &below);
+    return worst;
+}
+long ffcMeshQualityBelow(pmesh3 const &pTh, double const &q)
+{
+    if (!(q >= 0.0 && q <= 1.0)) fail("ffcMeshQuality", "argument 'q': " + num(q) + " is not a mean ratio in [0, 1]");
+    double worst;
+    long below;
+    meshQuality("ffcMeshQuality", pTh, q, &worst, &below);
+    return below;
+}
+
 // ffcTime(): monotonic wall-clock time in seconds (for timings; FreeFEM's
 // clock() is processor time, summed over threads).
 double ffcTime()

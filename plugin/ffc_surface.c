@@ -226,3 +226,37 @@ int ffc_volume_check(long nt, const long T[], long nv, const double X[],
     }
     return FFC_OK;
 }
+
+/* Formulation: the mean ratio of a tetrahedron, q = 12 (3 |V|)^(2/3) /
+ * sum of its six squared edge lengths: 1 for the regular one (edge l: V =
+ * l^3 / (6 sqrt 2), so 3 V = l^3 / (2 sqrt 2), (3 V)^(2/3) = l^2 / 2, and
+ * 12 l^2 / 2 = 6 l^2), falling to 0 as it flattens into a sliver, a
+ * needle or a cap; invariant under translation, rotation and scaling. */
+int ffc_mesh_quality(long nt, const long T[], long nv, const double X[], double qbelow, double *worst,
+                     long *worst_tet, long *below)
+{
+    if (!T || !X || !worst || !worst_tet || !below) return FFC_ERR_NULL;
+    if (nt <= 0 || nv <= 0) return FFC_ERR_SIZE;
+    if (!(qbelow >= 0.0)) return FFC_ERR_VALUE;
+    *worst = INFINITY;
+    *worst_tet = -1;
+    *below = 0;
+    for (long t = 0; t < nt; t++) {
+        const long *v = T + 4 * t;
+        for (int a = 0; a < 4; a++)
+            if (v[a] < 0 || v[a] >= nv) { *worst_tet = t; return FFC_ERR_INDEX; }
+        double l2 = 0.0;
+        for (int a = 0; a < 4; a++)
+            for (int b = a + 1; b < 4; b++)
+                for (int i = 0; i < 3; i++) {
+                    const double d = X[3 * v[b] + i] - X[3 * v[a] + i];
+                    l2 += d * d;
+                }
+        const double v3 = fabs(tet_vol6(v, X, NULL)) / 2.0;   /* 3 |V| */
+        const double q = l2 > 0.0 ? 12.0 * cbrt(v3 * v3) / l2 : 0.0;
+        if (!isfinite(q)) { *worst_tet = t; return FFC_ERR_NONFINITE; }
+        if (q < *worst) { *worst = q; *worst_tet = t; }
+        *below += q < qbelow;
+    }
+    return FFC_OK;
+}

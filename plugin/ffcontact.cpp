@@ -88,6 +88,8 @@ static void init()
     Global.Add("ffcMassSpread", "(",
                new OneOperator4_<long, Matrice_Creuse<double> *, KN<double> *, KNM<double> *, Matrice_Creuse<double> *>(massSpread));
     Global.Add("ffcInverted", "(", new OneOperator2_<long, pmesh3, KN<double> *>(ffcInverted));
+    Global.Add("ffcMeshQuality", "(", new OneOperator1_<double, pmesh3>(ffcMeshQuality));
+    Global.Add("ffcMeshQuality", "(", new OneOperator2_<long, pmesh3, double>(ffcMeshQualityBelow));
     Global.Add("ffcP2Nodes", "(", new OneOperator2_<long, pmesh3, KN<double> *>(ffcP2Nodes));
     Global.Add("ffcSaveVTK", "(", new OneOperator2_<long, string *, KNM<double> *>(ffcSaveVTK));
     Global.Add("ffcWriteColumns", "(",

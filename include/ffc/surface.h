@@ -50,6 +50,14 @@ int ffc_surface_area(int nn, long nf, const long F[], long nv,
 int ffc_volume_check(long nt, const long T[], long nv, const double X[],
                      const double u[], long *bad);
 
+/* The shape quality of the nt tetrahedra T[nt*4] at X: the mean ratio
+ * 12 (3 |V|)^(2/3) / (sum of the squared edge lengths), 1 for the regular
+ * tetrahedron and 0 for a flat one.  *worst and *worst_tet: the lowest and
+ * the first tetrahedron that has it; *below: how many lie below qbelow.
+ * FFC_ERR_INDEX (*worst_tet = the tetrahedron) for a vertex out of range. */
+int ffc_mesh_quality(long nt, const long T[], long nv, const double X[], double qbelow, double *worst,
+                     long *worst_tet, long *below);
+
 /* Unit normals N[nf*3] at the centroid of each facet of F[nf*nn], at
  * positions X + u (u may be NULL).  Errors as ffc_surface_check. */
 int ffc_surface_normals(int nn, long nf, const long F[], long nv,

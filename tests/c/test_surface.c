@@ -1,5 +1,6 @@
 /* test_surface.c: selection by label, outward orientation, validation and
- * area of boundary surfaces given as plain arrays. */
+ * area of boundary surfaces given as plain arrays; the tetrahedra's shape
+ * quality. */
 #include "ffc_test.h"
 
 /* one tetrahedron, faces given with mixed orientation, labels 1..4 */
@@ -166,6 +167,52 @@ static void test_area(void **state)
     assert_close(A, ref, 1e-4 * ref);
 }
 
+/* ffc_mesh_quality against hand values of the mean ratio 12 (3|V|)^(2/3)
+ * / sum l^2: the regular tetrahedron 1; the corner one (0, e_x, e_y, e_z:
+ * 3V = 1/2, sum l^2 = 3 + 6) (4/3) 2^(-2/3); the unit square's corners
+ * with the fourth lifted by e = 1e-3 (3V = e / 2, sum l^2 = 8 + 3 e^2).
+ * The same values scaled by 7, turned (axes permuted) and moved; the
+ * lowest and its tetrahedron, the count below a bound; bad input.
+ * Tolerance 1e-14: a few roundings of numbers of order one. */
+static void test_mesh_quality(void **state)
+{
+    (void)state;
+    const double e = 1e-3;
+    const double X[12 * 3] = {1, 1, 1, 1, -1, -1, -1, 1, -1, -1, -1, 1,   /* regular */
+                              0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, e,     /* sliver */
+                              0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};    /* corner */
+    const long T[3 * 4] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11};
+    const double qs = 12.0 * cbrt(e * e / 4.0) / (8.0 + 3.0 * e * e), qc = 4.0 / 3.0 * pow(2.0, -2.0 / 3.0);
+    const double want[3] = {1.0, qs, qc};
+    double w;
+    long wt, below;
+    for (int k = 0; k < 3; k++) {
+        assert_int_equal(ffc_mesh_quality(1, T + 4 * k, 12, X, 0.5, &w, &wt, &below), FFC_OK);
+        assert_close(w, want[k], 1e-14);
+        assert_int_equal(wt, 0);
+        assert_int_equal(below, want[k] < 0.5);
+        double Y[12 * 3];   /* 7 (y, z, x) + (3, -2, 5) */
+        for (int v = 0; v < 12; v++)
+            for (int i = 0; i < 3; i++) Y[3 * v + i] = 7.0 * X[3 * v + (i + 1) % 3] + (i == 0 ? 3.0 : i == 1 ? -2.0 : 5.0);
+        assert_int_equal(ffc_mesh_quality(1, T + 4 * k, 12, Y, 0.5, &w, &wt, &below), FFC_OK);
+        assert_close(w, want[k], 1e-14);
+    }
+    assert_true(qs > 0.0094 && qs < 0.0095);   /* (a sliver: about 0.00945) */
+    assert_int_equal(ffc_mesh_quality(3, T, 12, X, 0.9, &w, &wt, &below), FFC_OK);
+    assert_close(w, qs, 1e-14);
+    assert_int_equal(wt, 1);
+    assert_int_equal(below, 2);
+    /* bad input */
+    const long Tbad[4] = {0, 1, 2, 12};
+    assert_int_equal(ffc_mesh_quality(1, Tbad, 12, X, 0.5, &w, &wt, &below), FFC_ERR_INDEX);
+    assert_int_equal(wt, 0);
+    assert_int_equal(ffc_mesh_quality(0, T, 12, X, 0.5, &w, &wt, &below), FFC_ERR_SIZE);
+    assert_int_equal(ffc_mesh_quality(1, T, 12, X, -1.0, &w, &wt, &below), FFC_ERR_VALUE);
+    assert_int_equal(ffc_mesh_quality(1, T, 12, X, NAN, &w, &wt, &below), FFC_ERR_VALUE);
+    assert_int_equal(ffc_mesh_quality(1, NULL, 12, X, 0.5, &w, &wt, &below), FFC_ERR_NULL);
+    assert_int_equal(ffc_mesh_quality(1, T, 12, X, 0.5, NULL, &wt, &below), FFC_ERR_NULL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -174,6 +221,7 @@ int main(void)
         cmocka_unit_test(test_check_errors),
         cmocka_unit_test(test_scene_volume),
         cmocka_unit_test(test_area),
+        cmocka_unit_test(test_mesh_quality),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
