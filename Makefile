@@ -4,7 +4,7 @@
 #   make demo       set-up, build, Hertz case study end to end (quadratic, h_c = 0.05)
 #   make test       set-up, build, whole test suite
 #   make run CASE=<name> ARGS="<options>" [NP=<n>]   one case study -> results/<name>.json
-#                   (NP: n ranks of FreeFem++-mpi: small strain, one CHOLMOD factor per machine and the compliance columns shared; full systems by parallel MUMPS)
+#                   (NP: n ranks of FreeFem++-mpi: small strain, every rank the whole CHOLMOD factor and the compliance columns shared; full systems by parallel MUMPS)
 #   make exercise N=<k> ARGS="<options> name=value"   exercise k, checked (README "Exercises")
 #   make exercises-check   every exercise's reference solution and common slip
 

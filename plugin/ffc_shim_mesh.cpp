@@ -317,6 +317,7 @@ long ffcInverted(pmesh3 const &pTh, KN<double> *const &u)
 {
     const char *fn = "ffcInverted";
     const Mesh3 &Th = need_mesh(fn, pTh);
+    if (Th.nt == 0) fail(fn, "argument 'Th': the mesh has no tetrahedra");
     MeshArrays m;
     mesh_arrays(Th, m);
     if (!u) fail(fn, "argument 'u': array is not defined");
@@ -342,11 +343,12 @@ namespace {
 void meshQuality(const char *fn, pmesh3 const &pTh, double q, double *worst, long *below)
 {
     const Mesh3 &Th = need_mesh(fn, pTh);
+    if (Th.nt == 0) fail(fn, "argument 'Th': the mesh has no tetrahedra");
     MeshArrays m;
     mesh_arrays(Th, m);
     long bad = -1;
     const int st = ffc_mesh_quality(m.nt, m.T.data(), m.nv, m.X.data(), q, worst, &bad, below);
-    if (st) fail(fn, "tetrahedron " + std::to_string(bad) + ": " + ffc_strerror(st));
+    if (st) fail(fn, "argument 'Th': tetrahedron " + std::to_string(bad) + ": " + ffc_strerror(st));
 }
 
 } // namespace

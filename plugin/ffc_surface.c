@@ -253,8 +253,8 @@ int ffc_mesh_quality(long nt, const long T[], long nv, const double X[], double 
                     l2 += d * d;
                 }
         const double v3 = fabs(tet_vol6(v, X, NULL)) / 2.0;   /* 3 |V| */
+        if (!isfinite(l2) || !isfinite(v3)) { *worst_tet = t; return FFC_ERR_NONFINITE; }
         const double q = l2 > 0.0 ? 12.0 * cbrt(v3 * v3) / l2 : 0.0;
-        if (!isfinite(q)) { *worst_tet = t; return FFC_ERR_NONFINITE; }
         if (q < *worst) { *worst = q; *worst_tet = t; }
         *below += q < qbelow;
     }

@@ -54,7 +54,10 @@ int ffc_volume_check(long nt, const long T[], long nv, const double X[],
  * 12 (3 |V|)^(2/3) / (sum of the squared edge lengths), 1 for the regular
  * tetrahedron and 0 for a flat one.  *worst and *worst_tet: the lowest and
  * the first tetrahedron that has it; *below: how many lie below qbelow.
- * FFC_ERR_INDEX (*worst_tet = the tetrahedron) for a vertex out of range. */
+ * FFC_ERR_NULL, FFC_ERR_SIZE (nt or nv not positive), FFC_ERR_VALUE
+ * (qbelow negative or NaN); FFC_ERR_INDEX and FFC_ERR_NONFINITE with
+ * *worst_tet = the tetrahedron with a vertex out of range or a coordinate
+ * not finite. */
 int ffc_mesh_quality(long nt, const long T[], long nv, const double X[], double qbelow, double *worst,
                      long *worst_tet, long *below);
 

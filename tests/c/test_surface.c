@@ -172,7 +172,8 @@ static void test_area(void **state)
  * 3V = 1/2, sum l^2 = 3 + 6) (4/3) 2^(-2/3); the unit square's corners
  * with the fourth lifted by e = 1e-3 (3V = e / 2, sum l^2 = 8 + 3 e^2).
  * The same values scaled by 7, turned (axes permuted) and moved; the
- * lowest and its tetrahedron, the count below a bound; bad input.
+ * lowest and its tetrahedron, the count below a bound; bad input (a NaN
+ * or infinite coordinate refused, not read as a flat tetrahedron).
  * Tolerance 1e-14: a few roundings of numbers of order one. */
 static void test_mesh_quality(void **state)
 {
@@ -209,6 +210,13 @@ static void test_mesh_quality(void **state)
     assert_int_equal(ffc_mesh_quality(0, T, 12, X, 0.5, &w, &wt, &below), FFC_ERR_SIZE);
     assert_int_equal(ffc_mesh_quality(1, T, 12, X, -1.0, &w, &wt, &below), FFC_ERR_VALUE);
     assert_int_equal(ffc_mesh_quality(1, T, 12, X, NAN, &w, &wt, &below), FFC_ERR_VALUE);
+    double Xn[12 * 3];   /* a coordinate not finite, of the second tetrahedron */
+    memcpy(Xn, X, sizeof Xn);
+    Xn[3 * 6 + 1] = NAN;
+    assert_int_equal(ffc_mesh_quality(3, T, 12, Xn, 0.5, &w, &wt, &below), FFC_ERR_NONFINITE);
+    assert_int_equal(wt, 1);
+    Xn[3 * 6 + 1] = INFINITY;
+    assert_int_equal(ffc_mesh_quality(3, T, 12, Xn, 0.5, &w, &wt, &below), FFC_ERR_NONFINITE);
     assert_int_equal(ffc_mesh_quality(1, NULL, 12, X, 0.5, &w, &wt, &below), FFC_ERR_NULL);
     assert_int_equal(ffc_mesh_quality(1, T, 12, X, 0.5, NULL, &wt, &below), FFC_ERR_NULL);
 }
