@@ -11,7 +11,8 @@
 # factorization memory on the largest rank; peak_mb_per_rank: the largest
 # rank's peak resident memory).
 #   sh tests/bench/bench_mpi.sh [quick|full|large] [N]   (quick: h_c 0.025 and 0.0125
-#   (CHOLMOD on every rank, and parallel MUMPS), and finite deformation at
+#   (CHOLMOD on every rank, and parallel MUMPS; and 0.0125 in one process
+#   with N threads, its speedup against the 1-rank row), and finite deformation at
 #   0.025; full: also finite deformation at 0.0125
 #   and small strain at h_c 0.008, about 150k dofs; large: that row alone)
 # First, what N processes at once get from this machine against one
@@ -44,9 +45,23 @@ pair() {   # pair <case> <options...>
         echo "$case,$*,$r,$(num "$f" dofs),$(num "$f" contact_dofs),$w,$(num "$f" time_solve),$(num "$f" time_factor),$(num "$f" time_backsolves),$(echo "$w1 $w" | awk '{printf "%.2f", $1 / $2}'),$(num "$f" newton_iterations),$(num "$f" factor_mb_per_rank),$(num "$f" peak_mb_per_rank),$(num "$f" F)" | tee -a "$out"
     done
 }
+# one process with N BLAS / OpenMP threads, against which ranks must pay
+# on one machine (ranks column: 1, threads in the options column)
+threads() {   # threads <case> <options...>
+    case=$1; shift
+    j=results/bench/mpi-$case-$(echo "$*" | tr -c 'a-z0-9.\n' '_')-t$np
+    for k in $(seq "$reps"); do
+        OPENBLAS_NUM_THREADS=$np OMP_NUM_THREADS=$np sh scripts/ff "scripts/$case.edp" "$@" -vtk 0 -out "$j-$k" > "$j.log" 2>&1 \
+            || { echo "bench-mpi: $case $* with $np threads failed (see $j.log)"; return 1; }
+        echo "$(num "$j-$k.json" time_total) $k"
+    done | sort -g | awk -v m=$(( (reps + 1) / 2 )) 'NR == m {print $2}' > "$j.median"
+    f=$j-$(cat "$j.median").json; w=$(num "$f" time_total)
+    echo "$case,$* ($np threads),1,$(num "$f" dofs),$(num "$f" contact_dofs),$w,$(num "$f" time_solve),$(num "$f" time_factor),$(num "$f" time_backsolves),$(echo "$w1 $w" | awk '{printf "%.2f", $1 / $2}'),$(num "$f" newton_iterations),$(num "$f" factor_mb_per_rank),$(num "$f" peak_mb_per_rank),$(num "$f" F)" | tee -a "$out"
+}
 if [ "$mode" = large ]; then pair hertz -hc 0.008; exit 0; fi
 pair hertz -hc 0.025
 pair hertz -hc 0.0125
+threads hertz -hc 0.0125
 # the same on parallel MUMPS instead of CHOLMOD on every rank
 pair hertz -hc 0.0125 -engine mumps
 # the full-system path: finite deformation, K(u) + Kc factorized at every
