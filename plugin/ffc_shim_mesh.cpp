@@ -106,6 +106,7 @@ std::string num(double v)
 const Mesh3 &need_mesh(const char *fn, pmesh3 pTh)
 {
     if (!pTh) fail(fn, "argument 'Th': the mesh is not defined");
+    if (pTh->nt == 0) fail(fn, "argument 'Th': the mesh has no tetrahedra");   // (mesh_arrays reads each face's tetrahedron)
     return *pTh;
 }
 
@@ -317,7 +318,6 @@ long ffcInverted(pmesh3 const &pTh, KN<double> *const &u)
 {
     const char *fn = "ffcInverted";
     const Mesh3 &Th = need_mesh(fn, pTh);
-    if (Th.nt == 0) fail(fn, "argument 'Th': the mesh has no tetrahedra");
     MeshArrays m;
     mesh_arrays(Th, m);
     if (!u) fail(fn, "argument 'u': array is not defined");
@@ -343,7 +343,6 @@ namespace {
 void meshQuality(const char *fn, pmesh3 const &pTh, double q, double *worst, long *below)
 {
     const Mesh3 &Th = need_mesh(fn, pTh);
-    if (Th.nt == 0) fail(fn, "argument 'Th': the mesh has no tetrahedra");
     MeshArrays m;
     mesh_arrays(Th, m);
     long bad = -1;

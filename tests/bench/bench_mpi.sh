@@ -31,33 +31,29 @@ num() { sed -n "s/^ *\"$2\": *\([-0-9.eE+]*\),*$/\1/p" "$1" | head -1; }
 # several ranks is not reproducible to the last bit: MUMPS's parallel sums
 # change from run to run, and so may the number of Newton iterations)
 reps=${REPS:-3}
-pair() {   # pair <case> <options...>
-    case=$1; shift
-    w1=
-    for r in 1 "$np"; do
-        j=results/bench/mpi-$case-$(echo "$*" | tr -c 'a-z0-9.\n' '_')-$r
-        for k in $(seq "$reps"); do
-            sh scripts/ff -np "$r" "scripts/$case.edp" "$@" -vtk 0 -out "$j-$k" > "$j.log" 2>&1 \
-                || { echo "bench-mpi: $case $* on $r ranks failed (see $j.log)"; return 1; }
-            echo "$(num "$j-$k.json" time_total) $k"
-        done | sort -g | awk -v m=$(( (reps + 1) / 2 )) 'NR == m {print $2}' > "$j.median"
-        f=$j-$(cat "$j.median").json; w=$(num "$f" time_total); [ -z "$w1" ] && w1=$w
-        echo "$case,$*,$r,$(num "$f" dofs),$(num "$f" contact_dofs),$w,$(num "$f" time_solve),$(num "$f" time_factor),$(num "$f" time_backsolves),$(echo "$w1 $w" | awk '{printf "%.2f", $1 / $2}'),$(num "$f" newton_iterations),$(num "$f" factor_mb_per_rank),$(num "$f" peak_mb_per_rank),$(num "$f" F)" | tee -a "$out"
-    done
-}
-# one process with N BLAS / OpenMP threads, against which ranks must pay
-# on one machine (ranks column: 1, threads in the options column)
-threads() {   # threads <case> <options...>
-    case=$1; shift
-    j=results/bench/mpi-$case-$(echo "$*" | tr -c 'a-z0-9.\n' '_')-t$np
+# measure <tag> <ranks> <threads> <case> <options...>: REPS runs of the
+# case on that many ranks, each with that many BLAS / OpenMP threads; the
+# row of the median one (its speedup against w1, the wall of the row that
+# set it: pair's 1-rank row)
+measure() {
+    tag=$1 r=$2 t=$3 case=$4; shift 4
+    j=results/bench/mpi-$case-$(echo "$*" | tr -c 'a-z0-9.\n' '_')-$tag
     for k in $(seq "$reps"); do
-        OPENBLAS_NUM_THREADS=$np OMP_NUM_THREADS=$np sh scripts/ff "scripts/$case.edp" "$@" -vtk 0 -out "$j-$k" > "$j.log" 2>&1 \
-            || { echo "bench-mpi: $case $* with $np threads failed (see $j.log)"; return 1; }
+        OPENBLAS_NUM_THREADS=$t OMP_NUM_THREADS=$t sh scripts/ff -np "$r" "scripts/$case.edp" "$@" -vtk 0 -out "$j-$k" > "$j.log" 2>&1 \
+            || { echo "bench-mpi: $case $* on $r ranks of $t threads failed (see $j.log)"; return 1; }
         echo "$(num "$j-$k.json" time_total) $k"
     done | sort -g | awk -v m=$(( (reps + 1) / 2 )) 'NR == m {print $2}' > "$j.median"
-    f=$j-$(cat "$j.median").json; w=$(num "$f" time_total)
-    echo "$case,$* ($np threads),1,$(num "$f" dofs),$(num "$f" contact_dofs),$w,$(num "$f" time_solve),$(num "$f" time_factor),$(num "$f" time_backsolves),$(echo "$w1 $w" | awk '{printf "%.2f", $1 / $2}'),$(num "$f" newton_iterations),$(num "$f" factor_mb_per_rank),$(num "$f" peak_mb_per_rank),$(num "$f" F)" | tee -a "$out"
+    f=$j-$(cat "$j.median").json; w=$(num "$f" time_total); [ -z "$w1" ] && w1=$w
+    opts="$*"; [ "$t" -gt 1 ] && opts="$opts ($t threads)"
+    echo "$case,$opts,$r,$(num "$f" dofs),$(num "$f" contact_dofs),$w,$(num "$f" time_solve),$(num "$f" time_factor),$(num "$f" time_backsolves),$(echo "$w1 $w" | awk '{printf "%.2f", $1 / $2}'),$(num "$f" newton_iterations),$(num "$f" factor_mb_per_rank),$(num "$f" peak_mb_per_rank),$(num "$f" F)" | tee -a "$out"
 }
+pair() {   # pair <case> <options...>: on 1 and N ranks of one thread
+    w1=
+    for r in 1 "$np"; do measure "$r" "$r" 1 "$@"; done
+}
+# one process with N threads, against which ranks must pay on one machine
+# (after a pair: its speedup against that pair's 1-rank row)
+threads() { measure "t$np" 1 "$np" "$@"; }
 if [ "$mode" = large ]; then pair hertz -hc 0.008; exit 0; fi
 pair hertz -hc 0.025
 pair hertz -hc 0.0125
