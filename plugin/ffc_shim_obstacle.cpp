@@ -118,12 +118,18 @@ long addObstacle(const Named &nm, FFScene *const &C, KN<long> *const &sl, string
     // a surface none of whose facets faces the obstacle cannot touch it
     const double *X = d.order == 2 ? d.p2.X2.data() : d.m.X.data();
     if (ffc_obstacle_facing(&ob, d.order == 2 ? 6 : 3, nfs, Fs.data(), d.nn, X) == 0) {
-        std::string what = kind == FFC_OBST_PLANE ? "argument 'normal': no facet of the surface " + labels_text(*sl) +
-                                                        " faces the plane (the normal points toward the body, against the surface's outward normals)"
-                                                  : std::string("argument 'inside': no facet of the surface ") + labels_text(*sl) +
-                                                        " faces the " + shape_name(kind) + " (inside = " + (ob.inside ? "1" : "0") +
-                                                        "; the body " + (ob.inside ? "inside" : "outside") + " it)";
-        fail(fn, what);
+        // (named by the arguments that place the shape against the surface:
+        // any of them may be the one mistaken)
+        std::ostringstream s;
+        s << "no facet of the surface slaveLabs = " << labels_text(*sl) << " faces the " << shape_name(kind) << " (center = ("
+          << num(ob.c[0]) << ", " << num(ob.c[1]) << ", " << num(ob.c[2]) << ")";
+        if (kind == FFC_OBST_PLANE)
+            s << ", normal = (" << num(ob.a[0]) << ", " << num(ob.a[1]) << ", " << num(ob.a[2])
+              << "), which points toward the body, against the surface's outward normals): check the normal's sign and the label";
+        else
+            s << ", radius = " << num(ob.r) << ", inside = " << ob.inside << ": the body " << (ob.inside ? "inside" : "outside")
+              << " it): check the label, the centre and inside";
+        fail(fn, s.str());
     }
     long bad = -1;
     const int k = ffc_scene_add_obstacle(d.s, nfs, Fs.data(), &ob, &o, &bad);

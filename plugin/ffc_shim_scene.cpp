@@ -340,10 +340,14 @@ ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &
     if (o.mu > 0) {
         ffc_effects fx;
         ffc_scene_effects(d.s, &fx);
-        if (!fx.friction) {   // (the fix keeps the scene's other effects)
+        if (!fx.friction) {   // (the fix keeps the scene's other effects and its bulk)
             std::string e = "ffcFriction";
             if (fx.dynamic) e += " + ffcDynamic";
-            if (fx.finite_def) e += " + ffcFiniteDef";
+            ffc_bulk_law law;
+            ffc_scene_law(d.s, &law);
+            const char *bulk[] = {"elastic", "neohookean", "user", "svk", "mooneyrivlin"};
+            if (law.kind != FFC_BULK_LINEAR && law.kind >= 0 && law.kind <= FFC_BULK_MOONEYRIVLIN)
+                e += std::string(", bulk = \"") + bulk[law.kind] + "\"";
             bad(PO_MU, o.mu, ("> 0, but the scene's effects have no friction: make it with ffcScene C(Th, effects = " + e + ")").c_str());
         }
     }
