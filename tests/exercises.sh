@@ -53,7 +53,8 @@ if [ $? -eq 2 ] && grep -q 'no quantity "y"' "$log"; then ok; else bad "checker:
 sh scripts/exercises/check.sh "$fake" x=abc >"$log" 2>&1
 if [ $? -eq 2 ] && grep -q "'abc' is not a number" "$log"; then ok; else bad "checker: a prediction that is not a number"; fi
 # run.sh refuses bad input before the scene runs (no results file made)
-for args in "x=1|no quantity" "a=1 a=2|predicted twice" "-hc|has no value" "a=abc|is not a number" "foo|neither an option"; do
+for args in "x=1|no quantity" "a=1 a=2|predicted twice" "-hc|has no value" "a=abc|is not a number" "foo|neither an option" \
+            "-HC 0.05|no option '-HC'; its options are: -F -hc" "-hc=0.05 a=1|no option '-hc=0.05'"; do
     rm -f results/exercise-1.json
     # shellcheck disable=SC2086
     sh scripts/exercises/run.sh 1 ${args%%|*} >"$log" 2>&1

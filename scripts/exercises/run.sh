@@ -13,10 +13,19 @@ scene=$(ls "$here"/ex"$k"-*.edp 2>/dev/null | head -1)
 [ -n "$scene" ] || { echo "no exercise $k (exercises: $(ls "$here" | sed -n 's/^ex\([0-9]*\)-.*\.edp$/\1/p' | sort -n | tr '\n' ' '))"; exit 2; }
 opts=""; preds=""; want=""
 names=$(sed -n 's/.*exQuantity("\([A-Za-z0-9_]*\)".*/\1/p' "$scene" | tr '\n' ' ')
+# the options the scene reads, itself or through the case study it
+# includes (a mistyped one would leave its default in place without a word)
+files="$scene $(sed -n 's/^ *include "\([A-Za-z0-9_-]*\.edp\)".*/\1/p' "$scene" | sed "s|^|$root/scripts/|")"
+# shellcheck disable=SC2086
+known=$(grep -ho 'getARGV("-[A-Za-z0-9_]*"' $files | sed 's/getARGV("//; s/"$//' | sort -u | tr '\n' ' ')
 for a in "$@"; do
     if [ -n "$want" ]; then opts="$opts $a"; want=""; continue; fi
     case "$a" in
-        -*) opts="$opts $a"; want=$a ;;
+        -*) case " $known " in
+                *" $a "*) ;;
+                *) echo "exercise $k: no option '$a'; its options are: $known(each as -name value)"; exit 2 ;;
+            esac
+            opts="$opts $a"; want=$a ;;
         *=*) preds="$preds $a" ;;
         *) echo "exercise $k: '$a' is neither an option (-name value) nor a prediction (name=value)"; exit 2 ;;
     esac
