@@ -59,6 +59,7 @@ long face_of(const FaceMap &face, const long v[3]);
 void p2_facets(const char *fn, const MeshArrays &m, const P2Arrays &p2, const FaceMap &face, long nf, const long *F3,
                long *out6);
 std::string num(double v);
+const char *bulk_name(ffc_bulk_kind kind); // "elastic", "neohookean", "user", "svk", "mooneyrivlin"
 const Mesh3 &need_mesh(const char *fn, pmesh3 pTh);
 long matrix_triplets(const char *fn, const char *arg, Matrice_Creuse<double> *K, std::vector<long> &Ti,
                      std::vector<long> &Tj, std::vector<double> &Tv);

@@ -110,8 +110,7 @@ string *sceneBulkText(const Named &nm, FFScene *const &C)
     SceneData &d = need_scene("ffcBulkText", C);
     ffc_bulk_law l;
     ffc_scene_law(d.s, &l);
-    const char *kind[5] = {"elastic", "neohookean", "user", "svk", "mooneyrivlin"};
-    std::string t = std::string("bulk = \"") + kind[l.kind] + "\": " + (l.linear ? "linear" : "nonlinear") + ", " +
+    std::string t = std::string("bulk = \"") + bulk_name(l.kind) + "\": " + (l.linear ? "linear" : "nonlinear") + ", " +
                     (l.symmetric ? "symmetric" : "not symmetric") + ", " + (l.finite ? "finite deformation" : "small strain");
     return Add2StackOfPtr2Free(nm.s, new string(t));
 }

@@ -164,6 +164,13 @@ basicAC_F0::name_and_type scene_names[] = {
     {"shareLinks", &typeid(long)},    {"bulk", &typeid(string *)},      {"bulkLinear", &typeid(long)},
     {"bulkSymmetric", &typeid(long)}, {"bulkFinite", &typeid(long)}};
 
+// a bulk law's name, as ffcScene's argument bulk gives it
+const char *bulk_name(ffc_bulk_kind kind)
+{
+    static const char *const name[] = {"elastic", "neohookean", "user", "svk", "mooneyrivlin"};
+    return kind >= FFC_BULK_LINEAR && kind <= FFC_BULK_MOONEYRIVLIN ? name[kind] : "?";
+}
+
 namespace {
 
 // The bulk law the arguments bulk, bulkLinear, bulkSymmetric, bulkFinite
@@ -345,9 +352,7 @@ ffc_pair_opts named_pair_opts(const char *fn, const Named &nm, const SceneData &
             if (fx.dynamic) e += " + ffcDynamic";
             ffc_bulk_law law;
             ffc_scene_law(d.s, &law);
-            const char *bulk[] = {"elastic", "neohookean", "user", "svk", "mooneyrivlin"};
-            if (law.kind != FFC_BULK_LINEAR && law.kind >= 0 && law.kind <= FFC_BULK_MOONEYRIVLIN)
-                e += std::string(", bulk = \"") + bulk[law.kind] + "\"";
+            if (law.kind != FFC_BULK_LINEAR) e += std::string(", bulk = \"") + bulk_name(law.kind) + "\"";
             bad(PO_MU, o.mu, ("> 0, but the scene's effects have no friction: make it with ffcScene C(Th, effects = " + e + ")").c_str());
         }
     }
