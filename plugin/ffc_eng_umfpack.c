@@ -13,6 +13,10 @@ typedef struct {
     long nz;                 /* entries of the analysed pattern (count) */
     SuiteSparse_long *Ap, *Ai; /* [n + 1], [nz] the matrix by columns (sorted rows, duplicates summed) */
     double *Ax;              /* [nz] */
+    long tn;                 /* the triplets last converted (count; 0: no map) */
+    int tsym;                /* ... their sym */
+    int *ti, *tj;            /* [tn] ... their rows and columns */
+    SuiteSparse_long *map;   /* [tn + its mirrored entries] where each went in Ax (triplet_to_col's Map) */
     void *symbolic, *numeric;
     double control[UMFPACK_CONTROL];
 } ffc__umf;
@@ -26,6 +30,14 @@ static void umf_release(ffc__engine *e)
     e->factored = 0;
 }
 
+static void drop_map(ffc__umf *u)
+{
+    free(u->ti); free(u->tj); free(u->map);
+    u->ti = u->tj = NULL;
+    u->map = NULL;
+    u->tn = 0;
+}
+
 static void drop_all(ffc__umf *u)
 {
     umf_release(&u->base);
@@ -33,6 +45,7 @@ static void drop_all(ffc__umf *u)
     free(u->Ap); free(u->Ai); free(u->Ax);
     u->Ap = u->Ai = NULL;
     u->Ax = NULL;
+    drop_map(u);
 }
 
 static void umf_free(ffc__engine *e)
@@ -41,7 +54,9 @@ static void umf_free(ffc__engine *e)
     free(e);
 }
 
-/* A by columns into u (a symmetric lower triangle with its upper part);
+/* A by columns into u (a symmetric lower triangle with its upper part),
+ * keeping A's (i, j) and where each entry went (the map by which the next
+ * matrix of the same triplets is filled: same_triplets, refill);
  * FFC_ERR_MEMORY, or FFC_ERR_INDEX for an entry outside the order */
 static int to_columns(ffc__umf *u, const ffc__tri *A)
 {
@@ -51,20 +66,48 @@ static int to_columns(ffc__umf *u, const ffc__tri *A)
     SuiteSparse_long *Ti = malloc((size_t)(nz ? nz : 1) * sizeof *Ti), *Tj = malloc((size_t)(nz ? nz : 1) * sizeof *Tj);
     double *Tx = malloc((size_t)(nz ? nz : 1) * sizeof *Tx);
     free(u->Ap); free(u->Ai); free(u->Ax);
+    drop_map(u);
     u->Ap = malloc((size_t)(n + 1) * sizeof *u->Ap);
     u->Ai = malloc((size_t)(nz ? nz : 1) * sizeof *u->Ai);
     u->Ax = malloc((size_t)(nz ? nz : 1) * sizeof *u->Ax);
-    int st = Ti && Tj && Tx && u->Ap && u->Ai && u->Ax ? FFC_OK : FFC_ERR_MEMORY;
+    u->map = malloc((size_t)(nz ? nz : 1) * sizeof *u->map);
+    u->ti = malloc((size_t)(A->nz ? A->nz : 1) * sizeof *u->ti);
+    u->tj = malloc((size_t)(A->nz ? A->nz : 1) * sizeof *u->tj);
+    int st = Ti && Tj && Tx && u->Ap && u->Ai && u->Ax && u->map && u->ti && u->tj ? FFC_OK : FFC_ERR_MEMORY;
     for (long k = 0, c = 0; k < A->nz && !st; k++) {
         if (A->i[k] < 0 || A->i[k] >= n || A->j[k] < 0 || A->j[k] >= n) { st = FFC_ERR_INDEX; break; }
         Ti[c] = A->i[k]; Tj[c] = A->j[k]; Tx[c++] = A->v[k];
         if (A->sym && A->i[k] != A->j[k]) { Ti[c] = A->j[k]; Tj[c] = A->i[k]; Tx[c++] = A->v[k]; }
     }
-    if (!st && umfpack_dl_triplet_to_col(n, n, nz, Ti, Tj, Tx, u->Ap, u->Ai, u->Ax, NULL) != UMFPACK_OK)
+    if (!st && umfpack_dl_triplet_to_col(n, n, nz, Ti, Tj, Tx, u->Ap, u->Ai, u->Ax, u->map) != UMFPACK_OK)
         st = FFC_ERR_MEMORY;
     free(Ti); free(Tj); free(Tx);
+    if (!st) {
+        memcpy(u->ti, A->i, (size_t)A->nz * sizeof *u->ti);
+        memcpy(u->tj, A->j, (size_t)A->nz * sizeof *u->tj);
+        u->tn = A->nz;
+        u->tsym = A->sym;
+    } else drop_map(u);
     u->nz = st ? 0 : u->Ap[n];
     return st;
+}
+
+/* 1 when A's triplets are those to_columns converted last (the same
+ * entries in the same order) */
+static int same_triplets(const ffc__umf *u, const ffc__tri *A)
+{
+    return u->map && u->tn == A->nz && u->tn > 0 && u->tsym == A->sym && A->n == u->base.n &&
+           !memcmp(u->ti, A->i, (size_t)A->nz * sizeof *A->i) && !memcmp(u->tj, A->j, (size_t)A->nz * sizeof *A->j);
+}
+
+/* A's values into Ax through the map (A: same_triplets) */
+static void refill(ffc__umf *u, const ffc__tri *A)
+{
+    memset(u->Ax, 0, (size_t)u->nz * sizeof *u->Ax);
+    for (long k = 0, c = 0; k < A->nz; k++) {
+        u->Ax[u->map[c++]] += A->v[k];
+        if (A->sym && A->i[k] != A->j[k]) u->Ax[u->map[c++]] += A->v[k];
+    }
 }
 
 static int umf_analyze(ffc__engine *e, const ffc__tri *A)
@@ -95,7 +138,9 @@ static int umf_factorize(ffc__engine *e, const ffc__tri *A)
     if (!u->symbolic || A->n != e->n) return ffc__engine_fail(e, FFC_ERR_EMPTY, FFC_AT_NONE, -1, "UMFPACK: not analysed");
     umf_release(e);
     const long nz0 = u->nz;
-    int st = to_columns(u, A);
+    int st = FFC_OK;
+    if (same_triplets(u, A)) refill(u, A);   /* (no new conversion: the analysed triplets' values) */
+    else st = to_columns(u, A);
     if (!st && u->nz != nz0)
         return ffc__engine_fail(e, FFC_ERR_VALUE, FFC_AT_COUNT, u->nz, "UMFPACK: %ld entries, the analysed pattern "
                                 "has %ld", u->nz, nz0);

@@ -244,6 +244,9 @@ struct SceneData {
     // columns (9 nb), made at the first call
     std::vector<long> hrp, hadj, hKi, hKj;
     std::vector<double> hKv;
+    // the contact tangent's last count of triplets (ffcAssemble sizes its
+    // buffers from it: one assembly pass a call where the count holds)
+    long cLastNt = 0;
     ~SceneData()
     {
         ffc_full_free(full);

@@ -109,23 +109,26 @@ long sceneAssembleImpl(const char *fn, const Named &nm, FFScene *C, KN<double> *
     scene_motion(fn, nm, d, iv, iv + 1, iv + 2);
     std::vector<double> Rc(n, 0.0);
     long nt = 0, bad = -1;
-    std::vector<long> Ti, Tj;
-    std::vector<double> Tv;
+    // (buffers sized from the last call's count, left unfilled: one
+    // assembly pass where the count holds, a second where it outgrows them)
+    std::unique_ptr<long[]> Ti, Tj;
+    std::unique_ptr<double[]> Tv;
     int st;
-    for (long cap = K ? 4096 : 0;;) {
-        Ti.resize(cap); Tj.resize(cap); Tv.resize(cap);
+    for (long cap = K ? std::max(d.cLastNt + d.cLastNt / 8 + 1024, 4096L) : 0;;) {
+        Ti.reset(new long[cap > 0 ? cap : 1]); Tj.reset(new long[cap > 0 ? cap : 1]); Tv.reset(new double[cap > 0 ? cap : 1]);
         std::fill(Rc.begin(), Rc.end(), 0.0);
-        st = ffc_scene_assemble(d.s, pu, tangent, Rc.data(), cap, Ti.data(), Tj.data(), Tv.data(), &nt, &bad);
+        st = ffc_scene_assemble(d.s, pu, tangent, Rc.data(), cap, Ti.get(), Tj.get(), Tv.get(), &nt, &bad);
         if (st != FFC_ERR_CAPACITY) break;
         cap = nt;
     }
+    if (K && !st) d.cLastNt = nt;
     if (st) scene_error(fn, st, bad, "the contact assembly");
     R->resize(n);
     for (long i = 0; i < n; i++) (*R)[i] = Rc[i];
     double active = 0;
     ffc_scene_stat(d.s, -1, "active", 0, &active);
     if (!K) return (long)active;
-    triplets_to_matrix(fn, n, nt, Ti.data(), Tj.data(), Tv.data(), lower, K);
+    triplets_to_matrix(fn, n, nt, Ti.get(), Tj.get(), Tv.get(), lower, K);
     return (long)active;
 }
 

@@ -453,14 +453,16 @@ void set_matrix(long n, long nk, long *Ci, long *Cj, double *Cv, bool lower, Mat
 void triplets_to_matrix(const char *fn, long n, long nt, const long *Ti, const long *Tj, const double *Tv, bool lower,
                         Matrice_Creuse<double> *K, const char *what)
 {
-    std::vector<long> Ci(nt > 0 ? nt : 1), Cj(nt > 0 ? nt : 1), rp(n + 1), wk(n);
-    std::vector<double> Cv(nt > 0 ? nt : 1);
-    const long nz = ffc_triplets_sum(n, nt, Ti, Tj, Tv, Ci.data(), Cj.data(), Cv.data(), rp.data(), wk.data());
+    // (work arrays left unfilled: ffc_triplets_sum writes before it reads)
+    const size_t m = (size_t)(nt > 0 ? nt : 1);
+    std::unique_ptr<long[]> Ci(new long[m]), Cj(new long[m]), rp(new long[n + 1]), wk(new long[n]);
+    std::unique_ptr<double[]> Cv(new double[m]);
+    const long nz = ffc_triplets_sum(n, nt, Ti, Tj, Tv, Ci.get(), Cj.get(), Cv.get(), rp.get(), wk.get());
     if (nz < 0) fail(fn, std::string(what) + ": " + ffc_strerror((int)nz));
     long nk = 0;   // (the entries kept: all, or the lower triangle's)
     for (long t = 0; t < nz; t++)
         if (!lower || Ci[t] >= Cj[t]) { Ci[nk] = Ci[t]; Cj[nk] = Cj[t]; Cv[nk] = Cv[t]; nk++; }
-    set_matrix(n, nk, Ci.data(), Cj.data(), Cv.data(), lower, K);
+    set_matrix(n, nk, Ci.get(), Cj.get(), Cv.get(), lower, K);
 }
 
 // ffcRankSum(A): the matrix A replaced on every rank by the sum of every

@@ -543,8 +543,11 @@ void iterative_path(const char *fn, SceneData &d)
 // iterative path (solver = "iterative") did not converge in krylovMax;
 // block = a real[int] of A's size: its nonzero entries name the dofs that
 // path's preconditioner solves exactly after each multigrid cycle (the
-// dofs the contact couples)
-basicAC_F0::name_and_type full_names[] = {{"symmetric", &typeid(long)}, {"reuse", &typeid(long)}, {"block", &typeid(KN<double> *)}};
+// dofs the contact couples); plus = a second matrix of A's size: the
+// system is A + plus, summed in C (a Newton system K + Kc without the
+// script forming the sum)
+basicAC_F0::name_and_type full_names[] = {{"symmetric", &typeid(long)}, {"reuse", &typeid(long)}, {"block", &typeid(KN<double> *)},
+                                          {"plus", &typeid(Matrice_Creuse<double> *)}};
 long sceneFullSolve(const Named &nm, FFScene *const &C, Matrice_Creuse<double> *const &A, KN<double> *const &b,
                     KN<double> *const &x)
 {
@@ -553,6 +556,15 @@ long sceneFullSolve(const Named &nm, FFScene *const &C, Matrice_Creuse<double> *
     std::vector<long> Ti, Tj;
     std::vector<double> Tv;
     const long n = matrix_triplets(fn, "A", A, Ti, Tj, Tv);
+    if (nm.has(3)) {   // plus: its entries after A's (the full solver sums duplicates)
+        std::vector<long> Pi, Pj;
+        std::vector<double> Pv;
+        const long np = matrix_triplets(fn, "plus", GetAny<Matrice_Creuse<double> *>((*nm.e[3])(nm.s)), Pi, Pj, Pv);
+        if (np != n) fail(fn, "argument 'plus': " + std::to_string(np) + " x " + std::to_string(np) + ", A is " + std::to_string(n) + " x " + std::to_string(n));
+        Ti.insert(Ti.end(), Pi.begin(), Pi.end());
+        Tj.insert(Tj.end(), Pj.begin(), Pj.end());
+        Tv.insert(Tv.end(), Pv.begin(), Pv.end());
+    }
     if (!b) fail(fn, "argument 'b': array is not defined");
     if (b->N() != n) fail(fn, "argument 'b': size " + std::to_string(b->N()) + ", expected " + std::to_string(n));
     need_finite(fn, "b", b);

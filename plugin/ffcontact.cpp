@@ -53,7 +53,7 @@ void init_scene()
     Global.Add("ffcHyperForce", "(", named<double, S, V, V, V, V>("ffcHyperForce", hyper_names, 1, sceneHyperForce));
     Global.Add("ffcHyperTangent", "(", named<long, S, V, V, V, M>("ffcHyperTangent", hyper_names, 1, sceneHyperTangent));
     Global.Add("ffcSolve", "(", named<long, S, M, V, V>("ffcSolve", nullptr, 0, sceneSolve));
-    Global.Add("ffcFullSolve", "(", named<long, S, M, V, V>("ffcFullSolve", full_names, 3, sceneFullSolve));
+    Global.Add("ffcFullSolve", "(", named<long, S, M, V, V>("ffcFullSolve", full_names, 4, sceneFullSolve));
     Global.Add("ffcSolveMessage", "(", named<string *, S>("ffcSolveMessage", nullptr, 0, sceneSolveMessage));
     Global.Add("ffcNTSSolve", "(", named<long, S, V, V, V, V, V>("ffcNTSSolve", nullptr, 0, sceneNTSSolve));
     Global.Add("ffcNewton", "(", named<long, S, V, V, V>("ffcNewton", newton_names, 11, sceneNewton));

@@ -96,8 +96,8 @@ static void test_unsymmetric(void **state)
 {
     (void)state;
     uint64_t s = 3;
-    static int ti[4 * N], tj[4 * N];
-    static double tv[4 * N], D[N * N];
+    static int ti[4 * N + 1], tj[4 * N + 1];
+    static double tv[4 * N + 1], D[N * N];
     memset(D, 0, sizeof D);
     long nz = 0;
     for (int i = 0; i < N; i++) {
@@ -116,6 +116,30 @@ static void test_unsymmetric(void **state)
     assert_int_equal(ffc__umfpack_create(&info, &e), FFC_OK);
     assert_int_equal(e->op->analyze(e, &A), FFC_OK);
     assert_int_equal(e->op->factorize(e, &A), FFC_OK);
+    assert_int_equal(e->op->solve(e, b, x), FFC_OK);
+    for (int i = 0; i < N; i++) assert_close(x[i], xd[i], 1e-12);
+    /* new values on the same triplets (filled through the analysis's map),
+     * a duplicate of the first entry among them; then the same entries in
+     * another order (converted again): the dense solutions each time */
+    tv[1] *= -2.0;
+    D[ti[1] * N + tj[1]] = 0.0;
+    for (long k = 1; k < nz; k++)
+        if (ti[k] == ti[1] && tj[k] == tj[1]) D[ti[k] * N + tj[k]] += tv[k];
+    ti[nz] = ti[0]; tj[nz] = tj[0]; tv[nz] = 0.5; D[ti[0] * N + tj[0]] += 0.5;
+    const ffc__tri A2 = {N, nz + 1, ti, tj, tv, 0};
+    assert_int_equal(e->op->analyze(e, &A2), FFC_OK);
+    for (int round = 0; round < 2; round++) {
+        tv[0] += 1.0; D[ti[0] * N + tj[0]] += 1.0;
+        assert_int_equal(e->op->factorize(e, &A2), FFC_OK);
+        assert_int_equal(e->op->solve(e, b, x), FFC_OK);
+        test_dense_solve(N, D, b, xd);
+        for (int i = 0; i < N; i++) assert_close(x[i], xd[i], 1e-12);
+    }
+    static int ri[4 * N + 1], rj[4 * N + 1];
+    static double rv[4 * N + 1];
+    for (long k = 0; k <= nz; k++) { ri[k] = ti[nz - k]; rj[k] = tj[nz - k]; rv[k] = tv[nz - k]; }
+    const ffc__tri A3 = {N, nz + 1, ri, rj, rv, 0};
+    assert_int_equal(e->op->factorize(e, &A3), FFC_OK);
     assert_int_equal(e->op->solve(e, b, x), FFC_OK);
     for (int i = 0; i < N; i++) assert_close(x[i], xd[i], 1e-12);
     e->op->free(e);
@@ -232,6 +256,19 @@ static void test_full_reuse(void **state)
     assert_int_equal(ffc_full_info(f, &in, &analyses, NULL, NULL), FFC_OK);
     assert_int_equal(analyses, 1);
     assert_int_equal(in.factorizations, 2);
+    /* the same entries in the reverse order, a value changed: the dense
+     * solution */
+    {
+        static long Ri[6 * N], Rj[6 * N];
+        static double Rv[6 * N];
+        for (long k = 0; k < nt; k++) { Ri[k] = Ti[nt - 1 - k]; Rj[k] = Tj[nt - 1 - k]; Rv[k] = Tv[nt - 1 - k]; }
+        Rv[nt - 1] += 1.0;   /* (Tv[0], a diagonal entry) */
+        D[Ti[0] * N + Tj[0]] += 1.0;
+        assert_int_equal(ffc_full_solve(f, N, nt, Ri, Rj, Rv, 0, b, x, &err), FFC_OK);
+        test_dense_solve(N, D, b, xd);
+        for (int i = 0; i < N; i++) assert_close(x[i], xd[i], 1e-13);
+        D[Ti[0] * N + Tj[0]] -= 1.0;
+    }
     /* a matrix of fewer entries lies in the analysed pattern: no analysis */
     assert_int_equal(ffc_full_solve(f, N, nt - 1, Ti, Tj, Tv, 0, b, x, &err), FFC_OK);
     assert_int_equal(ffc_full_info(f, &in, &analyses, NULL, NULL), FFC_OK);
